@@ -1,0 +1,22 @@
+// Small statistics kernels used by several stages.
+#pragma once
+
+#include <vector>
+
+namespace pbms::analysis {
+
+double mean(const std::vector<double>& x);
+
+// Standard error of the mean of a correlated time series, from the scatter
+// of `blocks` block means (Flyvbjerg-Petersen style blocking, one level).
+double block_standard_error(const std::vector<double>& x, int blocks = 10);
+
+struct LineFit {
+  double slope = 0.0, intercept = 0.0;
+  double slope_error = 0.0;  // one standard error
+  double r2 = 0.0;
+};
+// Ordinary least squares y = slope * x + intercept. Needs >= 3 points.
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace pbms::analysis

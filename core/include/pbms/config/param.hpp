@@ -1,0 +1,94 @@
+// A declarative description of one configuration key. Every key a user may
+// write is described by a Param, so that validation, defaults, the config
+// reference in docs/ and a driver's self-description all come from one place.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/units.hpp"
+
+namespace pbms::config {
+
+enum class ParamKind {
+  kInteger,
+  kReal,      // number, or "value unit" when a dimension is set
+  kBoolean,
+  kString,
+  kName,      // identifier: [A-Za-z_][A-Za-z0-9_.-]*
+  kFile,      // path to a file that must exist and be readable
+  kPath,      // path that need not exist (an output directory)
+  kChoice,    // one of `choices`
+  kRealList,  // list of kReal
+  kIntList,   // list of kInteger
+  kMap,       // fixed keys (`fields`); with a discriminator, extra keys per variant
+  kMapOf,     // user-named entries, each described by `fields[0]`
+  kListOf,    // list, each element described by `fields[0]`
+};
+
+std::string_view kind_name(ParamKind k);
+
+struct Param {
+  std::string name;
+  ParamKind kind = ParamKind::kString;
+  std::string doc;
+  units::Dimension dimension = units::Dimension::kNone;
+  bool required = false;
+  std::optional<YAML::Node> default_value;
+  std::optional<double> min, max;
+  bool min_exclusive = false;
+  std::optional<size_t> min_length, max_length;
+  std::vector<std::string> choices;
+  bool allow_reference = false;  // may be {from: <stage>.<output>}
+  bool names_material = false;   // value must name an entry of `materials`
+  std::vector<Param> fields;
+  // kMap with variants: `discriminator` names the key whose value picks the
+  // extra fields in `variants` (stage "kind", material "kind").
+  std::string discriminator;
+  std::map<std::string, std::vector<Param>> variants;
+  std::map<std::string, std::string> variant_docs;
+
+  // Builders. Chaining on a temporary is safe: the caller copies the result.
+  static Param integer(std::string name, std::string doc);
+  static Param real(std::string name, units::Dimension dim, std::string doc);
+  static Param boolean(std::string name, std::string doc);
+  static Param string(std::string name, std::string doc);
+  static Param identifier(std::string name, std::string doc);
+  static Param file(std::string name, std::string doc);
+  static Param path(std::string name, std::string doc);
+  static Param choice(std::string name, std::vector<std::string> choices, std::string doc);
+  static Param real_list(std::string name, units::Dimension dim, std::string doc);
+  static Param int_list(std::string name, std::string doc);
+  static Param map(std::string name, std::vector<Param> fields, std::string doc);
+  static Param map_of(std::string name, Param element, std::string doc);
+  static Param list_of(std::string name, Param element, std::string doc);
+
+  Param& require() { required = true; return *this; }
+  template <typename T>
+  Param& def(const T& v) { default_value = YAML::Node(v); return *this; }
+  Param& at_least(double v) { min = v; min_exclusive = false; return *this; }
+  Param& above(double v) { min = v; min_exclusive = true; return *this; }
+  Param& at_most(double v) { max = v; return *this; }
+  Param& length(size_t lo, size_t hi) { min_length = lo; max_length = hi; return *this; }
+  Param& referable() { allow_reference = true; return *this; }
+  Param& material() { names_material = true; return *this; }
+  Param& variant(const std::string& value, std::vector<Param> extra, std::string doc);
+  Param& discriminated_by(std::string key) { discriminator = std::move(key); return *this; }
+
+  [[nodiscard]] const Param* field(std::string_view key) const;
+  // All keys valid in a map node whose discriminator has value `variant`.
+  [[nodiscard]] std::vector<const Param*> fields_for(const std::string& variant) const;
+  // One-line type description for error messages and docs ("real [bar]").
+  [[nodiscard]] std::string type_text() const;
+};
+
+// Round trip through YAML, so that a driver can declare its stage kinds'
+// parameters to the coupler (`md_driver --describe`).
+YAML::Node to_yaml(const Param& p);
+Param param_from_yaml(const YAML::Node& n);
+
+}  // namespace pbms::config

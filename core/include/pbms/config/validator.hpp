@@ -1,0 +1,56 @@
+// Checks a YAML tree against a Param schema. Collects every error instead of
+// stopping at the first, and produces the resolved tree: defaults filled in,
+// quantities converted to metal units.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/config/param.hpp"
+#include "pbms/error.hpp"
+
+namespace pbms::config {
+
+// A `{from: stage.output}` found while validating; checked by the workflow,
+// which knows the stage order and what each stage kind produces.
+struct Reference {
+  enum class Target { kStageOutput, kMaterial };
+  Target type = Target::kStageOutput;
+  std::string key_path;
+  std::string target;  // "stage.output", or a material name
+  int line = 0, column = 0;
+};
+
+class Validator {
+ public:
+  explicit Validator(std::string file) : file_(std::move(file)) {}
+
+  // Validates `node` against `schema` at `path`; returns the resolved node.
+  YAML::Node check(const Param& schema, const YAML::Node& node, const std::string& path);
+  // Validates a map node against an explicit list of fields.
+  YAML::Node check_fields(const std::vector<const Param*>& fields, const YAML::Node& node,
+                          const std::string& path);
+
+  void error(const YAML::Node& at, const std::string& path, const std::string& message);
+  void error_at(const YAML::Mark& mark, const std::string& path, const std::string& message);
+
+  [[nodiscard]] const std::vector<ConfigError>& errors() const { return errors_; }
+  [[nodiscard]] const std::vector<Reference>& references() const { return references_; }
+  [[nodiscard]] const std::string& file() const { return file_; }
+
+ private:
+  YAML::Node check_scalar(const Param& p, const YAML::Node& node, const std::string& path);
+  bool check_range(const Param& p, double v, const YAML::Node& node, const std::string& path);
+
+  std::string file_;
+  std::vector<ConfigError> errors_;
+  std::vector<Reference> references_;
+};
+
+std::string join_path(const std::string& parent, const std::string& key);
+// "did you mean 'x'?" for near misses (edit distance <= 2), else empty.
+std::string suggest(const std::string& key, const std::vector<std::string>& candidates);
+
+}  // namespace pbms::config

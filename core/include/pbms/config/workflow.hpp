@@ -1,0 +1,60 @@
+// The workflow a user writes: run identity, launch layout, materials and an
+// ordered list of stages. Loading checks everything that can be checked
+// before any process starts and reports all problems at once.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/config/param.hpp"
+#include "pbms/config/stage_kind.hpp"
+#include "pbms/error.hpp"
+
+namespace pbms::config {
+
+struct StageConfig {
+  std::string name;
+  std::string kind;
+  std::string program;  // driver that runs it
+  YAML::Node params;    // resolved: defaults filled, quantities in metal units
+  int line = 0;
+};
+
+struct Workflow {
+  std::string source_file;
+  std::string run_name;
+  std::string output_dir;
+  uint64_t seed = 0;
+  std::map<std::string, int> ranks;  // program -> rank count, for drivers in use
+  YAML::Node materials;
+  std::vector<StageConfig> stages;
+  YAML::Node resolved;  // the whole resolved config, written into each run dir
+
+  [[nodiscard]] std::filesystem::path run_dir() const;
+  // Drivers the stages need, in order of first use.
+  [[nodiscard]] std::vector<std::string> programs() const;
+};
+
+struct LoadResult {
+  std::optional<Workflow> workflow;
+  std::vector<ConfigError> errors;
+};
+
+// `drivers` are the stage kinds the installed drivers declare.
+LoadResult load_workflow(const std::string& path, const std::vector<DriverDescription>& drivers);
+
+// The schema of the workflow file for the given drivers (docs, validation).
+Param workflow_schema(const std::vector<DriverDescription>& drivers);
+Param materials_schema();
+
+// Applies `--ranks md=2` style overrides. Returns an error message, or empty.
+std::string apply_rank_override(Workflow& wf, const std::vector<DriverDescription>& drivers,
+                                const std::string& spec);
+
+}  // namespace pbms::config

@@ -1,0 +1,56 @@
+// Particle trajectories in H5MD 1.1 (read by OVITO and MDAnalysis). All
+// ranks of `comm` call every method; each passes its own particles, and the
+// rows are laid out by rank order (offsets from an exclusive scan), so the
+// file is the same whatever the decomposition as long as each rank's slice
+// is in global-id order.
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pbms/io/hdf5.hpp"
+
+namespace pbms {
+
+class H5mdWriter {
+ public:
+  struct Options {
+    std::string path;
+    std::string creator = "pbms";
+    std::string creator_version;
+    std::array<bool, 3> periodic = {true, true, true};
+    bool velocities = false;
+  };
+  // `ids` and `species` are this rank's particles; the count is fixed.
+  H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids,
+             const std::vector<int>& species);
+
+  // `positions` (and `velocities` when enabled) hold 3 values per local
+  // particle in the same order as the ids given to the constructor.
+  void write_frame(int64_t step, double time_ps, const std::array<double, 3>& box_edges,
+                   const std::vector<double>& positions, const std::vector<double>& velocities = {});
+  [[nodiscard]] int64_t frames() const { return frames_; }
+
+ private:
+  struct TimeSeries {
+    h5::Handle group, step, time, value;
+  };
+  TimeSeries make_series(hid_t parent, const std::string& name, int rank_dims, hsize_t n,
+                         const std::string& unit);
+  void append(TimeSeries& ts, int64_t step, double time, const double* data, hsize_t n_local,
+              hsize_t offset, hsize_t n_total, hsize_t width);
+
+  MPI_Comm comm_;
+  Options opt_;
+  h5::Handle file_;
+  h5::Handle dxpl_;
+  TimeSeries edges_, position_, velocity_;
+  hsize_t n_local_ = 0, offset_ = 0, n_total_ = 0;
+  int64_t frames_ = 0;
+};
+
+}  // namespace pbms

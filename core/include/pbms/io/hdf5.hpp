@@ -1,0 +1,56 @@
+// Small RAII layer over the HDF5 C API: every hid_t is closed by its owner,
+// so an exception never leaves a file open (and unreadable) behind.
+#pragma once
+
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pbms::h5 {
+
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer);  // throws if id < 0
+  ~Handle() { reset(); }
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)), closer_(o.closer_) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, -1);
+      closer_ = o.closer_;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  [[nodiscard]] hid_t id() const { return id_; }
+  void reset();
+
+ private:
+  hid_t id_ = -1;
+  Closer closer_ = nullptr;
+};
+
+// Opens `path` for read-write, creating it if missing. With a communicator
+// of more than one rank the file is opened collectively through MPI-IO.
+Handle open_or_create(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
+Handle create_truncate(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
+// The group at `path` (slash separated), creating missing parents.
+Handle require_group(hid_t parent, const std::string& path);
+void delete_link_if_exists(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& name);
+
+void write_attribute(hid_t obj, const std::string& name, const std::string& value);
+void write_attribute(hid_t obj, const std::string& name, double value);
+void write_attribute(hid_t obj, const std::string& name, const std::vector<int>& value);
+// 1-D double dataset with a "unit" attribute.
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& data,
+                  const std::string& unit);
+void write_scalar(hid_t parent, const std::string& name, double value, const std::string& unit);
+
+}  // namespace pbms::h5

@@ -1,0 +1,35 @@
+// Turns a stream of (step, total, simulated time) reports into progress
+// lines with a rate and an ETA. Decides when a line is worth printing: on a
+// terminal a refreshed line a few times a second, in a log about every 10 %.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace pbms {
+
+class ProgressMeter {
+ public:
+  ProgressMeter(std::string label, bool terminal) : label_(std::move(label)), terminal_(terminal) {}
+
+  // `now_s` is wall time in seconds from any fixed origin. Returns the line
+  // to print, or nothing if it is not yet due.
+  std::optional<std::string> update(int64_t step, int64_t total, double sim_time_ps,
+                                    const std::string& phase, double now_s);
+  // The line as it would be printed now (used for the final line).
+  [[nodiscard]] std::string format(int64_t step, int64_t total, double sim_time_ps,
+                                   const std::string& phase, double now_s) const;
+
+ private:
+  std::string label_;
+  bool terminal_;
+  double start_s_ = -1.0;
+  double last_print_s_ = -1.0;
+  int last_decile_ = -1;
+};
+
+// "1h02m", "3m05s", "42s"
+std::string format_duration(double seconds);
+
+}  // namespace pbms

@@ -1,0 +1,40 @@
+// LAMMPS "metal" units, the only units PBMS computes in, and the conversions
+// a user may write in a config ("5 GPa", "2 fs", "3846 m/s").
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace pbms::units {
+
+// Physical constants in metal units.
+inline constexpr double kBoltzmann = 8.617333262e-5;  // eV/K
+// (g/mol)(Å/ps)^2 -> eV
+inline constexpr double kMvv2e = 1.0364269e-4;
+inline constexpr double kBarPerGPa = 1.0e4;
+inline constexpr double kBarPerEvPerA3 = 1.6021766208e6;  // eV/Å^3 -> bar
+
+enum class Dimension {
+  kNone,
+  kPressure,     // bar
+  kLength,       // Å
+  kTime,         // ps
+  kTemperature,  // K
+  kVelocity,     // Å/ps
+  kEnergy,       // eV
+  kMass,         // g/mol
+  kRate,         // 1/ps
+};
+
+// Canonical symbol of a dimension in metal units ("bar", "Å", ...).
+std::string_view canonical_symbol(Dimension d);
+
+// Parses "5 GPa", "5GPa" or "5" (already canonical) into the canonical unit.
+// Throws pbms::Error naming the accepted units when the unit is unknown or of
+// the wrong dimension.
+double parse_quantity(std::string_view text, Dimension d);
+
+// The unit symbols a user may write for a dimension, comma separated.
+std::string accepted_symbols(Dimension d);
+
+}  // namespace pbms::units

@@ -1,0 +1,14 @@
+#include "pbms/error.hpp"
+
+#include <fmt/format.h>
+
+namespace pbms {
+
+std::string ConfigError::format() const {
+  std::string where = file.empty() ? "<input>" : file;
+  if (line > 0) where += fmt::format(":{}:{}", line, column);
+  const std::string key = key_path.empty() ? std::string("(top level)") : key_path;
+  return fmt::format("{}: error: {}: {}", where, key, message);
+}
+
+}  // namespace pbms

@@ -1,0 +1,45 @@
+#include "pbms/progress_meter.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace pbms {
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  const auto t = static_cast<long long>(std::llround(s));
+  if (t >= 3600) return fmt::format("{}h{:02}m", t / 3600, (t % 3600) / 60);
+  if (t >= 60) return fmt::format("{}m{:02}s", t / 60, t % 60);
+  return fmt::format("{}s", t);
+}
+
+std::string ProgressMeter::format(int64_t step, int64_t total, double sim_time_ps,
+                                  const std::string& phase, double now_s) const {
+  const double elapsed = start_s_ >= 0 ? now_s - start_s_ : 0.0;
+  const double rate = elapsed > 0 ? static_cast<double>(step) / elapsed : 0.0;
+  const double eta = rate > 0 ? static_cast<double>(total - step) / rate : NAN;
+  const double pct = total > 0 ? 100.0 * static_cast<double>(step) / static_cast<double>(total) : 0;
+  std::string line = fmt::format("[{}] step {}/{} ({:3.0f}%) | {:.2f} ps | {:.0f} steps/s | ETA {}",
+                                 label_, step, total, pct, sim_time_ps, rate, format_duration(eta));
+  if (!phase.empty()) line += " | " + phase;
+  return line;
+}
+
+std::optional<std::string> ProgressMeter::update(int64_t step, int64_t total, double sim_time_ps,
+                                                 const std::string& phase, double now_s) {
+  if (start_s_ < 0) start_s_ = now_s;
+  bool due = false;
+  if (terminal_) {
+    due = last_print_s_ < 0 || now_s - last_print_s_ >= 0.2 || step >= total;
+  } else {
+    const int decile = total > 0 ? static_cast<int>(10 * step / total) : 0;
+    due = decile > last_decile_;
+    if (due) last_decile_ = decile;
+  }
+  if (!due) return std::nullopt;
+  last_print_s_ = now_s;
+  return format(step, total, sim_time_ps, phase, now_s);
+}
+
+}  // namespace pbms

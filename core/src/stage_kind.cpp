@@ -1,0 +1,81 @@
+#include "pbms/config/stage_kind.hpp"
+
+namespace pbms::config {
+
+const OutputSpec* StageKindSpec::output(std::string_view name) const {
+  for (const auto& o : outputs) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+const StageKindSpec* DriverDescription::stage_kind(std::string_view kind) const {
+  for (const auto& s : stage_kinds) {
+    if (s.kind == kind) return &s;
+  }
+  return nullptr;
+}
+
+YAML::Node to_yaml(const StageKindSpec& s) {
+  YAML::Node n;
+  n["kind"] = s.kind;
+  n["program"] = s.program;
+  n["doc"] = s.doc;
+  n["params"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const auto& p : s.params) n["params"].push_back(to_yaml(p));
+  n["outputs"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const auto& o : s.outputs) {
+    YAML::Node on;
+    on["name"] = o.name;
+    on["shape"] = o.shape == OutputSpec::Shape::kScalar ? "scalar" : "table";
+    on["unit"] = o.unit;
+    on["doc"] = o.doc;
+    n["outputs"].push_back(on);
+  }
+  n["material_kinds"] = s.material_kinds;
+  return n;
+}
+
+StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
+  StageKindSpec s;
+  s.kind = n["kind"].as<std::string>();
+  s.program = n["program"].as<std::string>();
+  s.doc = n["doc"].as<std::string>("");
+  for (const auto& p : n["params"]) s.params.push_back(param_from_yaml(p));
+  for (const auto& on : n["outputs"]) {
+    OutputSpec o;
+    o.name = on["name"].as<std::string>();
+    o.shape = on["shape"].as<std::string>() == "scalar" ? OutputSpec::Shape::kScalar
+                                                         : OutputSpec::Shape::kTable;
+    o.unit = on["unit"].as<std::string>("");
+    o.doc = on["doc"].as<std::string>("");
+    s.outputs.push_back(o);
+  }
+  if (n["material_kinds"]) s.material_kinds = n["material_kinds"].as<std::vector<std::string>>();
+  return s;
+}
+
+YAML::Node to_yaml(const DriverDescription& d) {
+  YAML::Node n;
+  n["program"] = d.program;
+  n["short_name"] = d.short_name;
+  n["protocol_version"] = d.protocol_version;
+  for (const auto& [k, v] : d.software) n["software"][k] = v;
+  n["stage_kinds"] = YAML::Node(YAML::NodeType::Sequence);
+  for (const auto& s : d.stage_kinds) n["stage_kinds"].push_back(to_yaml(s));
+  return n;
+}
+
+DriverDescription driver_from_yaml(const YAML::Node& n) {
+  DriverDescription d;
+  d.program = n["program"].as<std::string>();
+  d.short_name = n["short_name"].as<std::string>();
+  d.protocol_version = n["protocol_version"].as<int>();
+  for (const auto& kv : n["software"]) {
+    d.software.emplace_back(kv.first.as<std::string>(), kv.second.as<std::string>());
+  }
+  for (const auto& s : n["stage_kinds"]) d.stage_kinds.push_back(stage_kind_from_yaml(s));
+  return d;
+}
+
+}  // namespace pbms::config

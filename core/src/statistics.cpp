@@ -1,0 +1,55 @@
+#include "pbms/analysis/statistics.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include "pbms/error.hpp"
+
+namespace pbms::analysis {
+
+double mean(const std::vector<double>& x) {
+  if (x.empty()) throw Error("mean of an empty series");
+  return std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
+}
+
+double block_standard_error(const std::vector<double>& x, int blocks) {
+  const size_t per = x.size() / static_cast<size_t>(blocks);
+  if (blocks < 2 || per == 0) return std::nan("");
+  std::vector<double> means;
+  for (int b = 0; b < blocks; ++b) {
+    double s = 0.0;
+    for (size_t i = 0; i < per; ++i) s += x[static_cast<size_t>(b) * per + i];
+    means.push_back(s / static_cast<double>(per));
+  }
+  const double m = mean(means);
+  double var = 0.0;
+  for (double v : means) var += (v - m) * (v - m);
+  var /= static_cast<double>(blocks - 1);
+  return std::sqrt(var / static_cast<double>(blocks));
+}
+
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+  const size_t n = x.size();
+  if (n < 3 || y.size() != n) throw Error("a line fit needs at least 3 (x, y) points");
+  const double mx = mean(x), my = mean(y);
+  double sxx = 0.0, sxy = 0.0, syy = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+    syy += (y[i] - my) * (y[i] - my);
+  }
+  if (sxx <= 0.0) throw Error("a line fit needs at least two distinct x values");
+  LineFit f;
+  f.slope = sxy / sxx;
+  f.intercept = my - f.slope * mx;
+  double rss = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double r = y[i] - (f.slope * x[i] + f.intercept);
+    rss += r * r;
+  }
+  f.slope_error = std::sqrt(rss / static_cast<double>(n - 2) / sxx);
+  f.r2 = syy > 0.0 ? 1.0 - rss / syy : 1.0;
+  return f;
+}
+
+}  // namespace pbms::analysis

@@ -1,0 +1,306 @@
+#include "pbms/config/validator.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <fmt/format.h>
+
+namespace pbms::config {
+namespace {
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string shown(const YAML::Node& n) {
+  if (n.IsScalar()) return fmt::format("'{}'", n.Scalar());
+  if (n.IsSequence()) return "a list";
+  if (n.IsMap()) return "a map";
+  return "nothing";
+}
+
+bool is_reference(const YAML::Node& n) {
+  return n.IsMap() && n.size() == 1 && n["from"] && n["from"].IsScalar();
+}
+
+}  // namespace
+
+std::string join_path(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+std::string suggest(const std::string& key, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_d = 3;
+  for (const auto& c : candidates) {
+    const size_t d = edit_distance(key, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", best);
+}
+
+void Validator::error_at(const YAML::Mark& mark, const std::string& path,
+                         const std::string& message) {
+  ConfigError e;
+  e.file = file_;
+  if (!mark.is_null()) {
+    e.line = mark.line + 1;
+    e.column = mark.column + 1;
+  }
+  e.key_path = path;
+  e.message = message;
+  errors_.push_back(std::move(e));
+}
+
+void Validator::error(const YAML::Node& at, const std::string& path, const std::string& message) {
+  error_at(at.IsDefined() ? at.Mark() : YAML::Mark::null_mark(), path, message);
+}
+
+bool Validator::check_range(const Param& p, double v, const YAML::Node& node,
+                            const std::string& path) {
+  const auto unit = units::canonical_symbol(p.dimension);
+  const std::string u = p.dimension == units::Dimension::kNone ? "" : fmt::format(" {}", unit);
+  if (p.min && (p.min_exclusive ? !(v > *p.min) : !(v >= *p.min))) {
+    error(node, path,
+          fmt::format("value {}{} is out of range: must be {} {}{}", v, u,
+                      p.min_exclusive ? ">" : ">=", *p.min, u));
+    return false;
+  }
+  if (p.max && !(v <= *p.max)) {
+    error(node, path, fmt::format("value {}{} is out of range: must be <= {}{}", v, u, *p.max, u));
+    return false;
+  }
+  return true;
+}
+
+YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
+                                   const std::string& path) {
+  if (!node.IsScalar()) {
+    error(node, path, fmt::format("expected {}, got {}", p.type_text(), shown(node)));
+    return {};
+  }
+  const std::string& s = node.Scalar();
+  switch (p.kind) {
+    case ParamKind::kInteger: {
+      long long v = 0;
+      try {
+        v = node.as<long long>();
+      } catch (const YAML::Exception&) {
+        error(node, path, fmt::format("expected an integer, got '{}'", s));
+        return {};
+      }
+      if (!check_range(p, static_cast<double>(v), node, path)) return {};
+      return YAML::Node(v);
+    }
+    case ParamKind::kReal: {
+      double v = 0.0;
+      try {
+        v = units::parse_quantity(s, p.dimension);
+      } catch (const Error& e) {
+        error(node, path,
+              fmt::format("expected {}: {}", p.type_text(), e.what()));
+        return {};
+      }
+      if (!check_range(p, v, node, path)) return {};
+      return YAML::Node(v);
+    }
+    case ParamKind::kBoolean: {
+      try {
+        return YAML::Node(node.as<bool>());
+      } catch (const YAML::Exception&) {
+        error(node, path, fmt::format("expected true or false, got '{}'", s));
+        return {};
+      }
+    }
+    case ParamKind::kString:
+      return YAML::Node(s);
+    case ParamKind::kName: {
+      static const std::regex re("[A-Za-z_][A-Za-z0-9_.-]*");
+      if (!std::regex_match(s, re)) {
+        error(node, path,
+              fmt::format("'{}' is not a valid name: use letters, digits, '_', '-' and '.', "
+                          "starting with a letter or '_'",
+                          s));
+        return {};
+      }
+      return YAML::Node(s);
+    }
+    case ParamKind::kFile: {
+      std::filesystem::path f(s);
+      if (f.is_relative()) f = std::filesystem::path(file_).parent_path() / f;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(f, ec)) {
+        error(node, path, fmt::format("file '{}' does not exist", f.string()));
+        return {};
+      }
+      if (!std::ifstream(f).good()) {
+        error(node, path, fmt::format("file '{}' cannot be read", f.string()));
+        return {};
+      }
+      return YAML::Node(std::filesystem::absolute(f).lexically_normal().string());
+    }
+    case ParamKind::kPath:
+      if (s.empty()) {
+        error(node, path, "path is empty");
+        return {};
+      }
+      return YAML::Node(s);
+    case ParamKind::kChoice:
+      if (std::find(p.choices.begin(), p.choices.end(), s) == p.choices.end()) {
+        error(node, path,
+              fmt::format("'{}' is not one of: {}{}", s, fmt::join(p.choices, ", "),
+                          suggest(s, p.choices)));
+        return {};
+      }
+      return YAML::Node(s);
+    default:
+      break;
+  }
+  return {};
+}
+
+YAML::Node Validator::check_fields(const std::vector<const Param*>& fields,
+                                   const YAML::Node& node, const std::string& path) {
+  YAML::Node out(YAML::NodeType::Map);
+  std::vector<std::string> names;
+  for (const auto* f : fields) names.push_back(f->name);
+  for (const auto& kv : node) {
+    const auto key = kv.first.Scalar();
+    if (std::find(names.begin(), names.end(), key) == names.end()) {
+      error(kv.first, join_path(path, key),
+            fmt::format("unknown key '{}'{}", key, suggest(key, names)));
+    }
+  }
+  for (const auto* f : fields) {
+    const YAML::Node child = node[f->name];
+    const std::string child_path = join_path(path, f->name);
+    if (!child.IsDefined()) {
+      if (f->required) {
+        error(node, child_path, fmt::format("required key '{}' is missing", f->name));
+      } else if (f->default_value) {
+        out[f->name] = YAML::Clone(*f->default_value);
+      }
+      continue;
+    }
+    if (child.IsNull()) {
+      error(child, child_path, fmt::format("'{}' has no value: expected {}", f->name,
+                                           f->type_text()));
+      continue;
+    }
+    YAML::Node resolved = check(*f, child, child_path);
+    if (resolved.IsDefined() && !resolved.IsNull()) out[f->name] = resolved;
+  }
+  return out;
+}
+
+YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::string& path) {
+  if (p.allow_reference && is_reference(node)) {
+    Reference r;
+    r.key_path = path;
+    r.target = node["from"].Scalar();
+    r.line = node["from"].Mark().line + 1;
+    r.column = node["from"].Mark().column + 1;
+    references_.push_back(r);
+    return YAML::Clone(node);
+  }
+  switch (p.kind) {
+    case ParamKind::kMap: {
+      if (!node.IsMap()) {
+        error(node, path, fmt::format("expected a map, got {}", shown(node)));
+        return {};
+      }
+      std::string variant;
+      if (!p.discriminator.empty()) {
+        const YAML::Node d = node[p.discriminator];
+        if (d.IsDefined() && d.IsScalar()) variant = d.Scalar();
+      }
+      std::vector<const Param*> fields = p.fields_for(variant);
+      if (!p.discriminator.empty() && !p.variants.count(variant)) {
+        // Only validate the common keys; the unknown variant is reported by the
+        // discriminator's choice check. Extra keys would only add noise.
+        YAML::Node partial(YAML::NodeType::Map);
+        for (const auto* f : fields) {
+          if (node[f->name]) partial[f->name] = node[f->name];
+        }
+        return check_fields(fields, node[p.discriminator].IsDefined() ? partial : node, path);
+      }
+      return check_fields(fields, node, path);
+    }
+    case ParamKind::kMapOf: {
+      if (!node.IsMap()) {
+        error(node, path, fmt::format("expected a map of named entries, got {}", shown(node)));
+        return {};
+      }
+      YAML::Node out(YAML::NodeType::Map);
+      static const std::regex re("[A-Za-z_][A-Za-z0-9_.-]*");
+      for (const auto& kv : node) {
+        const auto key = kv.first.Scalar();
+        const auto child_path = join_path(path, key);
+        if (!std::regex_match(key, re)) {
+          error(kv.first, child_path, fmt::format("'{}' is not a valid name", key));
+          continue;
+        }
+        out[key] = check(p.fields[0], kv.second, child_path);
+      }
+      return out;
+    }
+    case ParamKind::kListOf:
+    case ParamKind::kRealList:
+    case ParamKind::kIntList: {
+      if (!node.IsSequence()) {
+        error(node, path, fmt::format("expected a list, got {}", shown(node)));
+        return {};
+      }
+      if (p.min_length && node.size() < *p.min_length) {
+        error(node, path, fmt::format("needs at least {} entries, has {}", *p.min_length,
+                                      node.size()));
+      }
+      if (p.max_length && node.size() > *p.max_length) {
+        error(node, path, fmt::format("takes at most {} entries, has {}", *p.max_length,
+                                      node.size()));
+      }
+      Param element;
+      if (p.kind == ParamKind::kListOf) {
+        element = p.fields[0];
+      } else {
+        element = p;
+        element.kind = p.kind == ParamKind::kRealList ? ParamKind::kReal : ParamKind::kInteger;
+      }
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (size_t i = 0; i < node.size(); ++i) {
+        out.push_back(check(element, node[i], fmt::format("{}[{}]", path, i)));
+      }
+      return out;
+    }
+    default: {
+      YAML::Node out = check_scalar(p, node, path);
+      if (p.names_material && out.IsDefined() && !out.IsNull()) {
+        Reference r;
+        r.type = Reference::Target::kMaterial;
+        r.key_path = path;
+        r.target = node.Scalar();
+        r.line = node.Mark().line + 1;
+        r.column = node.Mark().column + 1;
+        references_.push_back(r);
+      }
+      return out;
+    }
+  }
+}
+
+}  // namespace pbms::config

@@ -1,0 +1,323 @@
+#include "pbms/config/workflow.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "pbms/config/validator.hpp"
+
+namespace pbms::config {
+namespace {
+
+std::vector<std::string> all_kinds(const std::vector<DriverDescription>& drivers) {
+  std::vector<std::string> out;
+  for (const auto& d : drivers) {
+    for (const auto& s : d.stage_kinds) out.push_back(s.kind);
+  }
+  return out;
+}
+
+const StageKindSpec* find_kind(const std::vector<DriverDescription>& drivers,
+                               const std::string& kind) {
+  for (const auto& d : drivers) {
+    if (const auto* s = d.stage_kind(kind)) return s;
+  }
+  return nullptr;
+}
+
+// Reports the first byte that cannot be part of a YAML text file: NUL, other
+// control characters, or malformed UTF-8. Returns false if one was found.
+bool check_text(const std::string& text, Validator& v) {
+  int line = 0, col = 0;
+  size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    size_t len = 1;
+    bool bad = false;
+    if (c < 0x20 && c != '\n' && c != '\r' && c != '\t') {
+      bad = true;
+    } else if (c >= 0x80) {
+      if ((c & 0xE0) == 0xC0) len = 2;
+      else if ((c & 0xF0) == 0xE0) len = 3;
+      else if ((c & 0xF8) == 0xF0) len = 4;
+      else bad = true;
+      for (size_t k = 1; !bad && k < len; ++k) {
+        bad = i + k >= text.size() || (static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80;
+      }
+    }
+    if (bad) {
+      YAML::Mark m;
+      m.line = line;
+      m.column = col;
+      v.error_at(m, "",
+                 fmt::format("not a text file: byte 0x{:02x} cannot appear in a YAML workflow", c));
+      return false;
+    }
+    if (c == '\n') {
+      ++line;
+      col = 0;
+    } else {
+      ++col;
+    }
+    i += len;
+  }
+  return true;
+}
+
+int stage_index_of(const std::string& key_path) {
+  // key paths of stage parameters start with "stages[i]"
+  if (key_path.rfind("stages[", 0) != 0) return -1;
+  return std::stoi(key_path.substr(7));
+}
+
+}  // namespace
+
+std::filesystem::path Workflow::run_dir() const {
+  return std::filesystem::path(output_dir) / run_name;
+}
+
+std::vector<std::string> Workflow::programs() const {
+  std::vector<std::string> out;
+  for (const auto& s : stages) {
+    if (std::find(out.begin(), out.end(), s.program) == out.end()) out.push_back(s.program);
+  }
+  return out;
+}
+
+Param workflow_schema(const std::vector<DriverDescription>& drivers) {
+  using units::Dimension;
+  std::vector<Param> launch_fields;
+  for (const auto& d : drivers) {
+    launch_fields.push_back(
+        Param::integer(d.short_name, fmt::format("MPI ranks for {}", d.program)).def(1).above(0));
+  }
+  Param stage = Param::map(
+      "stage",
+      {Param::identifier("name", "Unique stage name; names its results").require(),
+       Param::string("kind", "Stage kind, declared by one of the drivers").require()},
+      "One stage");
+  stage.discriminated_by("kind");
+  for (const auto& d : drivers) {
+    for (const auto& s : d.stage_kinds) stage.variant(s.kind, s.params, s.doc);
+  }
+  return Param::map(
+      "workflow",
+      {
+          Param::map("run",
+                     {Param::identifier("name", "Run name; results go to <output>/<name>/")
+                          .require(),
+                      Param::path("output", "Directory that holds run directories").def("runs"),
+                      Param::integer("seed", "Seed of every random number in the run")
+                          .def(12345)
+                          .at_least(0)},
+                     "Run identity")
+              .require(),
+          Param::map("launch", launch_fields, "MPI ranks per driver program")
+              .def(YAML::Node(YAML::NodeType::Map)),
+          materials_schema().def(YAML::Node(YAML::NodeType::Map)),
+          Param::list_of("stages", stage, "Stages, run in order").require().length(1, 1000),
+      },
+      "A PBMS workflow");
+}
+
+LoadResult load_workflow(const std::string& path, const std::vector<DriverDescription>& drivers) {
+  LoadResult result;
+  Validator v(path);
+  YAML::Mark top;
+  top.line = 0;
+  top.column = 0;
+
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    result.errors.push_back({path, 0, 0, "", "cannot open the workflow file"});
+    return result;
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
+    v.error_at(top, "", "the file is empty: a workflow needs 'run' and 'stages'");
+    result.errors = v.errors();
+    return result;
+  }
+  if (!check_text(text, v)) {
+    result.errors = v.errors();
+    return result;
+  }
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    v.error_at(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
+    result.errors = v.errors();
+    return result;
+  }
+  if (!root.IsMap()) {
+    v.error_at(root.IsDefined() ? root.Mark() : top, "",
+               "expected a map with keys run, launch, materials, stages");
+    result.errors = v.errors();
+    return result;
+  }
+
+  const Param schema = workflow_schema(drivers);
+  YAML::Node resolved = v.check(schema, root, "");
+
+  // Stage names and kinds.
+  std::vector<std::string> stage_names;
+  std::vector<const StageKindSpec*> stage_specs;
+  const YAML::Node stages = root["stages"];
+  if (stages.IsSequence()) {
+    for (size_t i = 0; i < stages.size(); ++i) {
+      const YAML::Node st = stages[i];
+      const std::string sp = fmt::format("stages[{}]", i);
+      std::string name;
+      const StageKindSpec* spec = nullptr;
+      if (st.IsMap() && st["name"] && st["name"].IsScalar()) {
+        name = st["name"].Scalar();
+        if (std::find(stage_names.begin(), stage_names.end(), name) != stage_names.end()) {
+          v.error(st["name"], sp + ".name", fmt::format("stage name '{}' is used twice", name));
+        }
+      }
+      if (st.IsMap() && st["kind"] && st["kind"].IsScalar()) {
+        const std::string kind = st["kind"].Scalar();
+        spec = find_kind(drivers, kind);
+        if (!spec) {
+          const auto kinds = all_kinds(drivers);
+          v.error(st["kind"], sp + ".kind",
+                  fmt::format("unknown stage kind '{}': no installed driver declares it "
+                              "(declared: {}){}",
+                              kind, fmt::join(kinds, ", "), suggest(kind, kinds)));
+        }
+      }
+      stage_names.push_back(name);
+      stage_specs.push_back(spec);
+    }
+  }
+
+  // Cross references: stage outputs must come from earlier stages; materials
+  // must exist and suit the stage.
+  const YAML::Node materials = root["materials"];
+  for (const auto& r : v.references()) {
+    YAML::Mark m;
+    m.line = r.line - 1;
+    m.column = r.column - 1;
+    const int idx = stage_index_of(r.key_path);
+    if (r.type == Reference::Target::kMaterial) {
+      if (!materials.IsMap() || !materials[r.target]) {
+        v.error_at(m, r.key_path, fmt::format("material '{}' is not defined under 'materials'",
+                                              r.target));
+        continue;
+      }
+      const YAML::Node mk = materials[r.target]["kind"];
+      if (idx >= 0 && stage_specs[idx] && mk && mk.IsScalar()) {
+        const auto& ok = stage_specs[idx]->material_kinds;
+        if (std::find(ok.begin(), ok.end(), mk.Scalar()) == ok.end()) {
+          v.error_at(m, r.key_path,
+                     fmt::format("material '{}' is of kind '{}', but stage kind '{}' takes {}",
+                                 r.target, mk.Scalar(), stage_specs[idx]->kind,
+                                 fmt::join(ok, ", ")));
+        }
+      }
+      continue;
+    }
+    const auto dot = r.target.find('.');
+    if (dot == std::string::npos) {
+      v.error_at(m, r.key_path,
+                 fmt::format("'{}' is not a stage output: write <stage>.<output>", r.target));
+      continue;
+    }
+    const std::string sname = r.target.substr(0, dot);
+    const std::string oname = r.target.substr(dot + 1);
+    const auto it = std::find(stage_names.begin(), stage_names.end(), sname);
+    if (it == stage_names.end()) {
+      v.error_at(m, r.key_path, fmt::format("no stage is named '{}'{}", sname,
+                                            suggest(sname, stage_names)));
+      continue;
+    }
+    const int target_idx = static_cast<int>(it - stage_names.begin());
+    if (idx >= 0 && target_idx >= idx) {
+      v.error_at(m, r.key_path,
+                 fmt::format("stage '{}' runs {} this one: a stage can only use outputs of "
+                             "stages before it",
+                             sname, target_idx == idx ? "as" : "after"));
+      continue;
+    }
+    const StageKindSpec* spec = stage_specs[target_idx];
+    if (!spec) continue;
+    const OutputSpec* out = spec->output(oname);
+    if (!out) {
+      std::vector<std::string> names;
+      for (const auto& o : spec->outputs) names.push_back(o.name);
+      v.error_at(m, r.key_path,
+                 fmt::format("stage '{}' ({}) has no output '{}' (outputs: {}){}", sname,
+                             spec->kind, oname, fmt::join(names, ", "), suggest(oname, names)));
+    } else if (out->shape != OutputSpec::Shape::kScalar) {
+      v.error_at(m, r.key_path,
+                 fmt::format("output '{}' is a table; this key takes a single number", r.target));
+    }
+  }
+
+  result.errors = v.errors();
+  if (!result.errors.empty()) return result;
+
+  Workflow wf;
+  wf.source_file = path;
+  wf.resolved = resolved;
+  wf.run_name = resolved["run"]["name"].as<std::string>();
+  wf.output_dir = resolved["run"]["output"].as<std::string>();
+  wf.seed = resolved["run"]["seed"].as<uint64_t>();
+  wf.materials = resolved["materials"];
+  for (size_t i = 0; i < stage_specs.size(); ++i) {
+    StageConfig sc;
+    sc.name = stage_names[i];
+    sc.kind = stage_specs[i]->kind;
+    sc.program = stage_specs[i]->program;
+    sc.params = resolved["stages"][i];
+    sc.line = stages[i].Mark().line + 1;
+    wf.stages.push_back(sc);
+  }
+  for (const auto& prog : wf.programs()) {
+    for (const auto& d : drivers) {
+      if (d.program == prog) wf.ranks[prog] = resolved["launch"][d.short_name].as<int>(1);
+    }
+  }
+  result.workflow = std::move(wf);
+  return result;
+}
+
+std::string apply_rank_override(Workflow& wf, const std::vector<DriverDescription>& drivers,
+                                const std::string& spec) {
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos) {
+    return fmt::format("--ranks '{}': write PROGRAM=COUNT, e.g. md=2", spec);
+  }
+  const std::string name = spec.substr(0, eq);
+  int count = 0;
+  try {
+    size_t used = 0;
+    count = std::stoi(spec.substr(eq + 1), &used);
+    if (used != spec.size() - eq - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    return fmt::format("--ranks '{}': '{}' is not an integer", spec, spec.substr(eq + 1));
+  }
+  if (count < 1) return fmt::format("--ranks '{}': the rank count must be at least 1", spec);
+  for (const auto& d : drivers) {
+    if (d.short_name == name || d.program == name) {
+      const auto progs = wf.programs();
+      if (std::find(progs.begin(), progs.end(), d.program) != progs.end()) {
+        wf.ranks[d.program] = count;
+      }
+      wf.resolved["launch"][d.short_name] = count;
+      return {};
+    }
+  }
+  std::vector<std::string> names;
+  for (const auto& d : drivers) names.push_back(d.short_name);
+  return fmt::format("--ranks '{}': no driver is called '{}' (drivers: {})", spec, name,
+                     fmt::join(names, ", "));
+}
+
+}  // namespace pbms::config

@@ -1,0 +1,23 @@
+// The coupling daemon: the one coupler process of an MPMD job. It shakes
+// hands with every driver, then walks the workflow's stages, sending each to
+// its driver and recording progress, results and failures.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pbms::coupler {
+
+struct DaemonOptions {
+  std::string config;
+  std::filesystem::path drivers_dir;
+  std::vector<std::string> rank_overrides;
+  bool terminal = false;
+  std::string command_line;
+};
+
+// Called between MPI_Init and MPI_Finalize. Returns the exit code.
+int run_daemon(const DaemonOptions& opt);
+
+}  // namespace pbms::coupler

@@ -1,0 +1,14 @@
+// The drivers installed next to the coupler and what they declare, learned
+// by running `<driver> --describe` (no MPI involved).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "pbms/config/stage_kind.hpp"
+
+namespace pbms::coupler {
+
+std::vector<config::DriverDescription> discover_drivers(const std::filesystem::path& dir);
+
+}  // namespace pbms::coupler

@@ -1,0 +1,128 @@
+// `coupler`: the coupling daemon (inside an MPMD job) and the checks the
+// launcher runs before starting one (validate, plan, post-mortem).
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "daemon.hpp"
+#include "driver_catalog.hpp"
+#include "pbms/config/workflow.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "postmortem.hpp"
+#include "reference_doc.hpp"
+
+namespace {
+
+std::filesystem::path own_dir() {
+  std::error_code ec;
+  auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::current_path() : p.parent_path();
+}
+
+// Loads and checks a workflow the way `pbms validate` reports it: every
+// error on its own line, nothing else. Returns the workflow or exits 1.
+std::optional<pbms::config::Workflow> load_or_report(
+    const std::string& config, const std::vector<pbms::config::DriverDescription>& drivers,
+    const std::vector<std::string>& overrides) {
+  auto r = pbms::config::load_workflow(config, drivers);
+  for (const auto& e : r.errors) std::cerr << e.format() << "\n";
+  if (!r.workflow) return std::nullopt;
+  bool ok = true;
+  for (const auto& o : overrides) {
+    if (auto err = pbms::config::apply_rank_override(*r.workflow, drivers, o); !err.empty()) {
+      std::cerr << config << ": error: " << err << "\n";
+      ok = false;
+    }
+  }
+  if (!ok) return std::nullopt;
+  return r.workflow;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"PBMS coupler: the coupling daemon and pre-launch checks. Users run ./pbms."};
+  app.require_subcommand(1);
+  std::string drivers_dir = own_dir().string();
+  app.add_option("--drivers", drivers_dir, "Directory holding the *_driver programs");
+
+  std::string config;
+  std::vector<std::string> ranks;
+  auto* validate = app.add_subcommand("validate", "Check a workflow; print every error");
+  validate->add_option("config", config, "Workflow YAML")->required();
+  validate->add_option("--ranks", ranks, "Rank override PROGRAM=N");
+
+  auto* plan = app.add_subcommand("plan", "Validate, then print the run directory and programs");
+  plan->add_option("config", config, "Workflow YAML")->required();
+  plan->add_option("--ranks", ranks, "Rank override PROGRAM=N");
+
+  bool terminal = false;
+  std::string command_line;
+  auto* daemon = app.add_subcommand("daemon", "Run as the coupling daemon (under mpirun)");
+  daemon->add_option("config", config, "Workflow YAML")->required();
+  daemon->add_option("--ranks", ranks, "Rank override PROGRAM=N");
+  daemon->add_flag("--tty", terminal, "Refresh progress lines in place");
+  daemon->add_option("--command", command_line, "Command line to record in the manifest");
+
+  std::string run_dir, mpirun_log;
+  int exit_code = 0;
+  auto* pm = app.add_subcommand("postmortem", "Record a job that mpirun ended");
+  pm->add_option("run_dir", run_dir)->required();
+  pm->add_option("--exit-code", exit_code)->required();
+  pm->add_option("--mpirun-log", mpirun_log)->required();
+
+  auto* reference = app.add_subcommand("reference", "Print the config reference (Markdown)");
+  auto* describe = app.add_subcommand("describe", "Print what every driver declares (YAML)");
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (*pm) return pbms::coupler::postmortem(run_dir, exit_code, mpirun_log);
+    const auto drivers = pbms::coupler::discover_drivers(drivers_dir);
+    if (*reference) {
+      std::cout << pbms::coupler::config_reference_markdown(drivers);
+      return 0;
+    }
+    if (*describe) {
+      YAML::Node all;
+      for (const auto& d : drivers) all.push_back(pbms::config::to_yaml(d));
+      YAML::Emitter e;
+      e << all;
+      std::cout << e.c_str() << "\n";
+      return 0;
+    }
+    if (*validate) {
+      auto wf = load_or_report(config, drivers, ranks);
+      if (!wf) return 1;
+      std::cout << fmt::format("{}: ok ({} stage{}, run directory {})\n", config,
+                               wf->stages.size(), wf->stages.size() == 1 ? "" : "s",
+                               wf->run_dir().string());
+      return 0;
+    }
+    if (*plan) {
+      auto wf = load_or_report(config, drivers, ranks);
+      if (!wf) return 1;
+      std::cout << "run_dir " << std::filesystem::absolute(wf->run_dir()).string() << "\n";
+      for (const auto& p : wf->programs()) std::cout << "app " << p << " " << wf->ranks[p] << "\n";
+      return 0;
+    }
+    if (*daemon) {
+      pbms::mpi::Environment env(argc, argv);
+      pbms::coupler::DaemonOptions opt{config, drivers_dir, ranks, terminal, command_line};
+      try {
+        return pbms::coupler::run_daemon(opt);
+      } catch (const std::exception& e) {
+        std::cerr << "pbms: error: coupler: " << e.what() << "\n" << std::flush;
+        MPI_Abort(MPI_COMM_WORLD, 2);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "pbms: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,147 @@
+#include "postmortem.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/io/yaml_file.hpp"
+#include "run_record.hpp"
+
+namespace pbms::coupler {
+namespace {
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// First "ERROR" line of any LAMMPS log the failing stage left behind.
+std::string lammps_error(const std::filesystem::path& stage_dir) {
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(stage_dir, ec)) {
+    if (e.path().extension() != ".log") continue;
+    std::ifstream in(e.path());
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("ERROR", 0) == 0) return line;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+DeadRank parse_mpirun_output(const std::string& text) {
+  DeadRank d;
+  std::smatch m;
+  static const std::regex signal_re(
+      R"(process rank (\d+) with PID \d+ on node \S+ exited on signal (\d+) \(([^)]*)\))");
+  static const std::regex exit_re(R"(Process name:\s*\[\[\d+,\d+\],(\d+)\][\s\S]*?Exit code:\s*(\d+))");
+  static const std::regex abort_re(R"(MPI_ABORT was invoked on rank (\d+))");
+  if (std::regex_search(text, m, signal_re)) {
+    d.world_rank = std::stoi(m[1]);
+    d.signal = std::stoi(m[2]);
+    d.signal_name = m[3];
+  } else if (std::regex_search(text, m, exit_re)) {
+    d.world_rank = std::stoi(m[1]);
+    d.exit_code = std::stoi(m[2]);
+  } else if (std::regex_search(text, m, abort_re)) {
+    d.world_rank = std::stoi(m[1]);
+  }
+  return d;
+}
+
+int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
+               const std::filesystem::path& mpirun_log) {
+  const std::string output = read_file(mpirun_log);
+  std::error_code ec;
+  if (std::filesystem::is_directory(run_dir)) {
+    std::filesystem::copy_file(mpirun_log, run_dir / "mpirun.log",
+                               std::filesystem::copy_options::overwrite_existing, ec);
+  }
+  const auto manifest_path = run_dir / "manifest.yaml";
+  if (!std::filesystem::exists(manifest_path)) {
+    std::cerr << fmt::format("pbms: the job ended (exit code {}) before the run directory was "
+                             "set up; see the messages above\n",
+                             mpirun_exit_code);
+    return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
+  }
+  YAML::Node manifest = YAML::LoadFile(manifest_path.string());
+  const std::string status = manifest["status"].as<std::string>("running");
+  if (status == "ok") return mpirun_exit_code;
+  if (status == "failed") {
+    const auto f = manifest["failure"];
+    std::cerr << fmt::format("pbms: run failed: {} rank {}{}: {}\n       details: {}\n",
+                             f["program"].as<std::string>("?"), f["rank"].as<int>(-1),
+                             f["stage"] ? fmt::format(" in stage '{}'", f["stage"].as<std::string>())
+                                        : "",
+                             f["message"].as<std::string>(""), (run_dir / "log.txt").string());
+    return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
+  }
+
+  // The coupler never got to record the failure: reconstruct it.
+  const DeadRank dead = parse_mpirun_output(output);
+  std::string program = "unknown program";
+  int rank = -1;
+  for (const auto& l : manifest["layout"]) {
+    const int first = l["first_world_rank"].as<int>();
+    const int n = l["ranks"].as<int>();
+    if (dead.world_rank >= first && dead.world_rank < first + n) {
+      program = l["program"].as<std::string>();
+      rank = dead.world_rank - first;
+    }
+  }
+  const std::string stage = manifest["current"]["stage"].as<std::string>("");
+  const int64_t step = manifest["current"]["step"].as<int64_t>(-1);
+  std::string cause;
+  if (dead.signal > 0) {
+    cause = fmt::format("killed by signal {} ({})", dead.signal, dead.signal_name);
+  } else if (dead.world_rank >= 0) {
+    cause = fmt::format("exited with code {}", dead.exit_code);
+  } else {
+    cause = fmt::format("the job ended with exit code {}", mpirun_exit_code);
+  }
+  if (!stage.empty()) {
+    if (auto err = lammps_error(run_dir / stage); !err.empty()) cause += ": LAMMPS said: " + err;
+  }
+  const std::string where =
+      stage.empty() ? std::string()
+                    : fmt::format(" during stage '{}' (last reported step {})", stage, step);
+  std::cerr << fmt::format("pbms: error: {} rank {} (world rank {}) {}{}\n", program, rank,
+                           dead.world_rank, cause, where);
+  YAML::Node f;
+  f["program"] = program;
+  f["rank"] = rank;
+  f["world_rank"] = dead.world_rank;
+  if (!stage.empty()) f["stage"] = stage;
+  if (step >= 0) f["step"] = step;
+  f["message"] = cause;
+  manifest["failure"] = f;
+  manifest["status"] = "failed";
+  manifest["finished"] = now_iso8601();
+  for (auto s : manifest["stages"]) {
+    if (s["name"].as<std::string>() == stage) s["status"] = "failed";
+  }
+  write_yaml_atomic(manifest_path, manifest, "what ran, with which software");
+  const auto summary_path = run_dir / "summary.yaml";
+  if (std::filesystem::exists(summary_path) && !stage.empty()) {
+    YAML::Node summary = YAML::LoadFile(summary_path.string());
+    for (const auto& s : manifest["stages"]) {
+      if (s["name"].as<std::string>() == stage) {
+        summary["stages"][stage]["kind"] = s["kind"].as<std::string>();
+      }
+    }
+    summary["stages"][stage]["status"] = "failed";
+    write_yaml_atomic(summary_path, summary,
+                      "scalar results per stage: {value, unit}; moduli in GPa, else metal units");
+  }
+  return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
+}
+
+}  // namespace pbms::coupler

@@ -1,0 +1,231 @@
+#include "run_record.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
+#include <map>
+
+#include <H5public.h>
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/io/hdf5.hpp"
+#include "pbms/io/yaml_file.hpp"
+#include "pbms/protocol/messages.hpp"
+
+#ifndef PBMS_GIT_HASH
+#define PBMS_GIT_HASH "unknown"
+#endif
+#ifndef PBMS_VERSION
+#define PBMS_VERSION "0"
+#endif
+
+namespace pbms::coupler {
+namespace {
+
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+YAML::Node scalar_node(const ScalarResult& s) {
+  YAML::Node n;
+  n["value"] = s.value;
+  n["unit"] = s.unit;
+  if (std::isfinite(s.std_error)) n["std_error"] = s.std_error;
+  return n;
+}
+
+}  // namespace
+
+std::string now_iso8601() {
+  const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S%z", &tm);
+  return buf;
+}
+
+RunRecord::RunRecord(const config::Workflow& wf, std::vector<ProgramLayout> layout,
+                     const std::string& command_line)
+    : dir_(std::filesystem::absolute(wf.run_dir())) {
+  // A rerun replaces the previous run of the same name, as LAMMPS replaces
+  // its log: the run directory always describes exactly one run.
+  std::filesystem::remove_all(dir_);
+  std::filesystem::create_directories(dir_);
+  write_yaml_atomic(dir_ / "config.yaml", wf.resolved,
+                    fmt::format("resolved from {}: defaults filled in, quantities in metal units",
+                                wf.source_file));
+
+  char host[256] = "unknown";
+  gethostname(host, sizeof host - 1);
+  unsigned maj = 0, min = 0, rel = 0;
+  H5get_libversion(&maj, &min, &rel);
+  char mpi_version[MPI_MAX_LIBRARY_VERSION_STRING];
+  int len = 0;
+  MPI_Get_library_version(mpi_version, &len);
+  std::string mpi(mpi_version, static_cast<size_t>(len));
+  if (auto nl = mpi.find_first_of(",\n"); nl != std::string::npos) mpi.resize(nl);
+
+  manifest_["pbms_version"] = PBMS_VERSION;
+  manifest_["git_hash"] = PBMS_GIT_HASH;
+  manifest_["protocol_version"] = static_cast<int>(protocol::kProtocolVersion);
+  manifest_["config"] = std::filesystem::absolute(wf.source_file).string();
+  manifest_["command"] = command_line;
+  manifest_["host"] = std::string(host);
+  manifest_["started"] = now_iso8601();
+  manifest_["status"] = "running";
+  manifest_["software"]["mpi"] = mpi;
+  manifest_["software"]["hdf5"] = fmt::format("{}.{}.{}", maj, min, rel);
+  for (const auto& l : layout) {
+    YAML::Node n;
+    n["program"] = l.program;
+    n["ranks"] = l.ranks;
+    n["first_world_rank"] = l.first_world_rank;
+    manifest_["layout"].push_back(n);
+  }
+  for (const auto& s : wf.stages) {
+    YAML::Node n;
+    n["name"] = s.name;
+    n["kind"] = s.kind;
+    n["program"] = s.program;
+    n["status"] = "pending";
+    manifest_["stages"].push_back(n);
+  }
+  summary_["run"] = wf.run_name;
+  summary_["stages"] = YAML::Node(YAML::NodeType::Map);
+  write_manifest();
+  write_summary();
+}
+
+void RunRecord::set_software(const std::string& program, const std::vector<std::string>& items) {
+  for (const auto& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) continue;
+    manifest_["software"][item.substr(0, eq)] = item.substr(eq + 1);
+  }
+  (void)program;
+  write_manifest();
+}
+
+void RunRecord::stage_started(const config::StageConfig& stage) {
+  for (auto n : manifest_["stages"]) {
+    if (n["name"].as<std::string>() == stage.name) n["status"] = "running";
+  }
+  YAML::Node cur;
+  cur["stage"] = stage.name;
+  cur["step"] = 0;
+  manifest_["current"] = cur;
+  write_manifest();
+}
+
+void RunRecord::progress(const std::string& stage, int64_t step, int64_t total,
+                         double sim_time_ps) {
+  manifest_["current"]["stage"] = stage;
+  manifest_["current"]["step"] = step;
+  manifest_["current"]["total_steps"] = total;
+  manifest_["current"]["sim_time_ps"] = sim_time_ps;
+  // Rewriting the manifest on every report would be wasteful; once a second
+  // is enough for a post-mortem to name the step.
+  const double now = wall_now();
+  if (now - last_manifest_write_ >= 1.0) write_manifest();
+}
+
+void RunRecord::stage_finished(const config::StageConfig& stage, const StageResults& results,
+                               double wall_s) {
+  write_stage_results(dir_ / "results.h5", stage.name, stage.kind, "ok", results, wall_s);
+  YAML::Node s;
+  s["kind"] = stage.kind;
+  s["status"] = "ok";
+  s["wall_s"] = wall_s;
+  s["results"] = YAML::Node(YAML::NodeType::Map);
+  for (const auto& r : results.scalars) s["results"][r.key] = scalar_node(r);
+  summary_["stages"][stage.name] = s;
+  write_summary();
+  for (auto n : manifest_["stages"]) {
+    if (n["name"].as<std::string>() == stage.name) {
+      n["status"] = "ok";
+      n["wall_s"] = wall_s;
+      for (const auto& f : results.files) n["files"].push_back(f);
+    }
+  }
+  manifest_.remove("current");
+  write_manifest();
+}
+
+void RunRecord::stage_failed(const std::string& stage, const std::string& kind) {
+  YAML::Node s;
+  s["kind"] = kind;
+  s["status"] = "failed";
+  s["results"] = YAML::Node(YAML::NodeType::Map);
+  summary_["stages"][stage] = s;
+  write_summary();
+  for (auto n : manifest_["stages"]) {
+    if (n["name"].as<std::string>() == stage) n["status"] = "failed";
+  }
+}
+
+void RunRecord::failed(const std::string& program, int rank, const std::string& stage,
+                       int64_t step, const std::string& message) {
+  YAML::Node f;
+  f["program"] = program;
+  f["rank"] = rank;
+  if (!stage.empty()) f["stage"] = stage;
+  if (step >= 0) f["step"] = step;
+  f["message"] = message;
+  manifest_["failure"] = f;
+  manifest_["status"] = "failed";
+  manifest_["finished"] = now_iso8601();
+  if (!stage.empty()) {
+    std::string kind;
+    for (const auto& n : manifest_["stages"]) {
+      if (n["name"].as<std::string>() == stage) kind = n["kind"].as<std::string>();
+    }
+    stage_failed(stage, kind);
+  }
+  write_manifest();
+}
+
+void RunRecord::finished() {
+  manifest_["status"] = "ok";
+  manifest_["finished"] = now_iso8601();
+  write_manifest();
+}
+
+void RunRecord::write_manifest() {
+  write_yaml_atomic(dir_ / "manifest.yaml", manifest_, "what ran, with which software");
+  last_manifest_write_ = wall_now();
+}
+
+void RunRecord::write_summary() {
+  write_yaml_atomic(dir_ / "summary.yaml", summary_,
+                    "scalar results per stage: {value, unit}; moduli in GPa, else metal units");
+}
+
+void write_stage_results(const std::filesystem::path& file, const std::string& stage,
+                         const std::string& kind, const std::string& status,
+                         const StageResults& results, double wall_s) {
+  h5::Handle f = h5::open_or_create(file.string());
+  h5::delete_link_if_exists(f.id(), stage);
+  h5::Handle g = h5::require_group(f.id(), stage);
+  h5::write_attribute(g.id(), "kind", kind);
+  h5::write_attribute(g.id(), "status", status);
+  h5::write_attribute(g.id(), "wall_s", wall_s);
+  for (const auto& [k, v] : results.attributes) h5::write_attribute(g.id(), k, v);
+  for (const auto& s : results.scalars) {
+    h5::write_scalar(g.id(), s.key, s.value, s.unit);
+    if (std::isfinite(s.std_error)) {
+      h5::Handle ds(H5Dopen2(g.id(), s.key.c_str(), H5P_DEFAULT), H5Dclose);
+      h5::write_attribute(ds.id(), "std_error", s.std_error);
+    }
+  }
+  for (const auto& c : results.columns) {
+    h5::Handle t = h5::require_group(g.id(), c.table);
+    h5::write_vector(t.id(), c.name, c.data, c.unit);
+  }
+  H5Fflush(f.id(), H5F_SCOPE_GLOBAL);
+}
+
+}  // namespace pbms::coupler

@@ -1,0 +1,63 @@
+// The files of one run directory that the coupler owns: the resolved config,
+// manifest.yaml, summary.yaml and results.h5. Each write leaves every file
+// complete and readable, so a crash at any moment loses nothing written
+// before it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/config/workflow.hpp"
+#include "pbms/mpi/mpmd.hpp"
+#include "pbms/results.hpp"
+
+namespace pbms::coupler {
+
+struct ProgramLayout {
+  std::string program;
+  int ranks = 0;
+  int first_world_rank = 0;
+};
+
+class RunRecord {
+ public:
+  // Clears and creates the run directory; writes config.yaml and a manifest
+  // with status "running".
+  RunRecord(const config::Workflow& wf, std::vector<ProgramLayout> layout,
+            const std::string& command_line);
+
+  [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }
+  [[nodiscard]] std::filesystem::path log_path() const { return dir_ / "log.txt"; }
+
+  void set_software(const std::string& program, const std::vector<std::string>& items);
+  void stage_started(const config::StageConfig& stage);
+  void progress(const std::string& stage, int64_t step, int64_t total, double sim_time_ps);
+  void stage_finished(const config::StageConfig& stage, const StageResults& results,
+                      double wall_s);
+  void stage_failed(const std::string& stage, const std::string& kind);
+  void failed(const std::string& program, int rank, const std::string& stage, int64_t step,
+              const std::string& message);
+  void finished();
+
+ private:
+  void write_manifest();
+  void write_summary();
+
+  std::filesystem::path dir_;
+  YAML::Node manifest_;
+  YAML::Node summary_;
+  double last_manifest_write_ = -1.0;
+};
+
+// Stores one stage's results in results.h5: a group per stage with units as
+// attributes. Opens and closes the file each time.
+void write_stage_results(const std::filesystem::path& file, const std::string& stage,
+                         const std::string& kind, const std::string& status,
+                         const StageResults& results, double wall_s);
+
+std::string now_iso8601();
+
+}  // namespace pbms::coupler

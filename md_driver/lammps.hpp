@@ -1,0 +1,49 @@
+// RAII ownership of one LAMMPS instance on the driver's communicator. Every
+// command is recorded, so the exact input each stage ran can be written out
+// and replayed with a plain `lmp -in` (the side-by-side check in tests/).
+#pragma once
+
+#define LAMMPS_LIB_MPI 1
+#include <mpi.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pbms::md {
+
+class Lammps {
+ public:
+  Lammps(MPI_Comm comm, const std::filesystem::path& log_file);
+  ~Lammps();
+  Lammps(const Lammps&) = delete;
+  Lammps& operator=(const Lammps&) = delete;
+
+  void command(const std::string& cmd);
+  void comment(const std::string& text);  // recorded only
+
+  // Runs `steps` MD steps in chunks of `chunk`, calling `after_chunk(done)`
+  // between chunks (progress, trajectory frames). Recorded as one `run`.
+  void run(int64_t steps, int64_t chunk, const std::function<void(int64_t)>& after_chunk);
+
+  [[nodiscard]] double thermo(const std::string& keyword) const;
+  [[nodiscard]] double variable(const std::string& name) const;  // equal-style
+  // Rows of a global array fix (fix vector), `columns` values per row.
+  [[nodiscard]] std::vector<std::vector<double>> fix_array(const std::string& id,
+                                                           int columns) const;
+  // Per-atom "x" or "v" of all atoms, ordered by atom id (every rank gets it).
+  [[nodiscard]] std::vector<double> gather(const std::string& name) const;
+  [[nodiscard]] int64_t natoms() const;
+  [[nodiscard]] int version() const;
+
+  void write_script(const std::filesystem::path& path, const std::string& header) const;
+  [[nodiscard]] const std::vector<std::string>& script() const { return script_; }
+
+ private:
+  void* handle_ = nullptr;
+  std::vector<std::string> script_;
+};
+
+}  // namespace pbms::md

@@ -1,0 +1,62 @@
+// Pieces every md_driver stage shares: the material's LAMMPS commands, a
+// crystal in a box, step counts, seeds and optional H5MD trajectories.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "lammps.hpp"
+#include "pbms/driver/stage_kind.hpp"
+#include "pbms/io/h5md_writer.hpp"
+
+namespace pbms::md {
+
+struct MdMaterial {
+  std::string name;
+  std::string pair_style;  // "eam/alloy"
+  std::string potential;
+  std::string element;
+  double mass = 0.0;
+  std::string lattice;  // "fcc"
+  double lattice_constant = 0.0;
+};
+
+MdMaterial material_of(const StageContext& ctx);
+
+// Commands for units, atoms, an `cells` block of `lattice` at constant `a`,
+// the potential and the neighbour list. `boundary` as in LAMMPS ("p p p").
+void build_crystal(Lammps& lmp, const MdMaterial& m, double a, const std::array<int, 3>& cells,
+                   const std::string& boundary);
+
+int64_t steps_for(double time_ps, double timestep_ps);
+// A positive 31-bit LAMMPS seed derived from the run seed and a salt.
+int lammps_seed(uint64_t run_seed, uint64_t salt);
+std::array<int, 3> cells_of(const YAML::Node& n);
+
+// Writes an H5MD frame every `every` steps when the stage asks for it.
+class TrajectoryRecorder {
+ public:
+  TrajectoryRecorder(const StageContext& ctx, Lammps& lmp, const std::string& file, int64_t every,
+                     std::array<bool, 3> periodic);
+  [[nodiscard]] bool enabled() const { return every_ > 0; }
+  [[nodiscard]] int64_t every() const { return every_; }
+  void maybe_write(int64_t step, double time_ps);
+  [[nodiscard]] std::string relative_path() const { return relative_; }
+
+ private:
+  const StageContext& ctx_;
+  Lammps& lmp_;
+  int64_t every_;
+  std::string relative_;
+  std::unique_ptr<H5mdWriter> writer_;
+};
+
+// Chunk length for Lammps::run: ~1 % of the stage for progress, aligned to
+// the trajectory interval so frames land on exact steps.
+int64_t chunk_for(int64_t total_steps, int64_t trajectory_every);
+
+std::vector<double> column(const std::vector<std::vector<double>>& rows, size_t j);
+
+}  // namespace pbms::md
