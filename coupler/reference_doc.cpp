@@ -26,7 +26,7 @@ void table(std::string& out, const std::vector<const config::Param*>& fields) {
   out += "| key | type | default | description |\n|---|---|---|---|\n";
   for (const auto* p : fields) {
     std::string def = p->required ? "**required**"
-                      : p->default_value ? "`" + scalar_text(*p->default_value) + "`"
+                      : p->default_value ? fmt::format("`{}`", scalar_text(*p->default_value))
                                          : "—";
     std::string doc = p->doc;
     if (p->min) doc += fmt::format(" Must be {} {}.", p->min_exclusive ? ">" : "≥", *p->min);

@@ -90,10 +90,12 @@ Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::arra
   if (mode == Mode::kNormal) {
     lmp.command(fmt::format("change_box all x scale {:.15g} remap", 1.0 + e));
   } else {
-    lmp.command(fmt::format("change_box all xy final $(({:.15g})*ly) remap", e));
+    lmp.command(fmt::format("change_box all xy final $(({:.15g})*ly) remap units box", e));
   }
   Stress s{};
   const double to_gpa = -1.0 / units::kBarPerGPa;  // LAMMPS pressure = -stress, in bar
+  // pxx..pxy must be on the thermo line so that `run 0` evaluates them.
+  lmp.command("thermo_style custom step pe press pxx pyy pzz pxy lx ly lz");
   if (temperature <= 0.0) {
     lmp.command("minimize 0 1e-12 10000 100000");
     lmp.command("run 0");

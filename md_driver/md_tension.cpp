@@ -81,10 +81,7 @@ void TensionStage::run(StageContext& ctx) {
     throw Error(fmt::format("stage '{}': grips of {} cells leave no wire between them in {} cells",
                             ctx.stage(), grip, cells[0]));
   }
-  // The grips are rigid, so the gauge is the free length between them.
-  const double gauge = (cells[0] - 2 * grip) * a;
   const double area = cells[1] * a * cells[2] * a;
-  const double grip_speed = 0.5 * rate * gauge;
   const int64_t n_load = steps_for(max_strain / rate, dt);
   const int64_t total = n_equil + n_load;
 
@@ -92,22 +89,17 @@ void TensionStage::run(StageContext& ctx) {
   lmp.comment(fmt::format("PBMS md_tension '{}': {}x{}x{} cells, {} K, strain rate {} 1/ps",
                           ctx.stage(), cells[0], cells[1], cells[2], temperature, rate));
   build_crystal(lmp, mat, a, cells, "s s s");
-  lmp.command(fmt::format("region left_grip block INF {} INF INF INF INF", grip));
-  lmp.command(fmt::format("region right_grip block {} INF INF INF INF INF", cells[0] - grip));
-  lmp.command("group left region left_grip");
-  lmp.command("group right region right_grip");
-  lmp.command("group grips union left right");
-  lmp.command("group wire subtract all grips");
   lmp.command(fmt::format("timestep {}", dt));
-  lmp.command(fmt::format("velocity wire create {} {} mom yes rot yes dist gaussian",
+  // Relax the surfaces at 0 K first: a thin wire cut from bulk contracts by
+  // ~1 %, and doing that in MD would leave it ringing axially for many ps.
+  lmp.command("minimize 0 1e-8 1000 10000");
+  // The wire then equilibrates free: surface stress shortens a thin wire,
+  // and holding its ends at the bulk spacing would pre-stress it by GPa.
+  lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
                           2.0 * temperature, lammps_seed(ctx.seed(), 7)));
-  lmp.command("velocity grips set 0 0 0");
-  lmp.command("fix hold_left left setforce 0 0 0");
-  lmp.command("fix hold_right right setforce 0 0 0");
-  lmp.command("fix move_grips grips nve");
-  lmp.command(fmt::format("fix nvt wire nvt temp {0} {0} 0.1", temperature));
-  lmp.command("compute wire_temp wire temp");
-  lmp.command("thermo_style custom step c_wire_temp pe lx");
+  lmp.command(fmt::format("fix nvt all nvt temp {0} {0} 0.1", temperature));
+  lmp.command("fix no_drift all momentum 100 linear 1 1 1 angular");
+  lmp.command("thermo_style custom step temp pe lx");
   lmp.command("thermo 1000");
   TrajectoryRecorder traj(ctx, lmp, "tension.h5md", traj_every, {false, false, false});
   traj.maybe_write(0, 0.0);
@@ -118,25 +110,56 @@ void TensionStage::run(StageContext& ctx) {
       ctx.progress(done, total, done * dt, "equilibration");
     });
   }
+  lmp.command("unfix nvt");
+  lmp.command("unfix no_drift");
 
-  // Loading: grips at +/- v; the wire starts from the matching linear
-  // velocity profile so no shock is launched from the grips.
+  // Grips: end slabs of the relaxed wire, moved rigidly at +/- v.
+  lmp.command("variable xlo equal bound(all,xmin)");
+  lmp.command("variable xhi equal bound(all,xmax)");
+  const double xlo = lmp.variable("xlo"), xhi = lmp.variable("xhi");
+  const double grip_len = grip * a;
+  const double gauge = xhi - xlo - 2.0 * grip_len;
+  const double grip_speed = 0.5 * rate * gauge;
+  lmp.command(fmt::format("region left_grip block INF {:.10g} INF INF INF INF units box",
+                          xlo + grip_len));
+  lmp.command(fmt::format("region right_grip block {:.10g} INF INF INF INF INF units box",
+                          xhi - grip_len));
+  lmp.command("group left region left_grip");
+  lmp.command("group right region right_grip");
+  lmp.command("group grips union left right");
+  lmp.command("group wire subtract all grips");
+  lmp.command("fix hold_left left setforce 0 0 0");
+  lmp.command("fix hold_right right setforce 0 0 0");
+  lmp.command("fix move_grips grips nve");
+  lmp.command(fmt::format("fix nvt wire nvt temp {0} {0} 0.1", temperature));
+  lmp.command("compute wire_temp wire temp");
   lmp.command("reset_timestep 0");
-  lmp.command(fmt::format("velocity left set {} 0 0", -grip_speed));
-  lmp.command(fmt::format("velocity right set {} 0 0", grip_speed));
-  lmp.command(fmt::format("velocity wire ramp vx {} {} x {} {} sum yes units box", -grip_speed,
-                          grip_speed, grip * a, (cells[0] - grip) * a));
-  // The force the wire exerts on each grip, read before setforce zeroes it.
-  lmp.command(fmt::format("variable stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
-                          area, units::kBarPerEvPerA3 / units::kBarPerGPa));
-  lmp.command(fmt::format("variable strain equal step*dt*{:.12g}", rate));
-  lmp.command(fmt::format("fix samples all vector {} v_strain v_stress c_wire_temp", every));
+  lmp.command(fmt::format("velocity left set {} 0 0 units box", -grip_speed));
+  lmp.command(fmt::format("velocity right set {} 0 0 units box", grip_speed));
+  // The wire starts from the matching linear velocity profile, so no shock
+  // is launched from the grips.
+  lmp.command(fmt::format("velocity wire ramp vx {} {} x {:.10g} {:.10g} sum yes units box",
+                          -grip_speed, grip_speed, xlo + grip_len, xhi - grip_len));
+  // Stress from the forces the wire exerts on the grips (read before
+  // setforce zeroes them), averaged over each sampling window.
+  lmp.command(fmt::format(
+      "variable stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}", area,
+      units::kBarPerEvPerA3 / units::kBarPerGPa));
+  lmp.command(fmt::format("fix stress_avg all ave/time 1 {0} {0} v_stress", every));
+  // Strain at the middle of the window the stress was averaged over.
+  lmp.command(fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1),
+                          rate));
+  lmp.command("variable stress_avg equal f_stress_avg");
+  lmp.command("variable wire_temp equal c_wire_temp");
+  lmp.command(fmt::format("fix samples all vector {} v_strain v_stress_avg v_wire_temp", every));
   lmp.run(n_load, chunk, [&](int64_t done) {
     traj.maybe_write(n_equil + done, (n_equil + done) * dt);
     ctx.progress(n_equil + done, total, (n_equil + done) * dt,
                  fmt::format("strain {:.4f}", done * dt * rate));
   });
-  const auto rows = lmp.fix_array("samples", 3);
+  auto rows = lmp.fix_array("samples", 3);
+  // Row 0 is step 0, before any window was averaged.
+  if (!rows.empty()) rows.erase(rows.begin());
   const auto strain = column(rows, 0), stress = column(rows, 1), temp = column(rows, 2);
 
   std::vector<double> fx, fy;

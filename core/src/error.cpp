@@ -7,7 +7,7 @@ namespace pbms {
 std::string ConfigError::format() const {
   std::string where = file.empty() ? "<input>" : file;
   if (line > 0) where += fmt::format(":{}:{}", line, column);
-  const std::string key = key_path.empty() ? std::string("(top level)") : key_path;
+  const std::string key = key_path.empty() ? std::string("<document>") : key_path;
   return fmt::format("{}: error: {}: {}", where, key, message);
 }
 

@@ -25,7 +25,12 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 std::string shown(const YAML::Node& n) {
-  if (n.IsScalar()) return fmt::format("'{}'", n.Scalar());
+  if (n.IsScalar()) {
+    const auto& s = n.Scalar();
+    // Long or multi-line values (an unclosed quote swallows the file) are cut.
+    const auto cut = std::min<size_t>(s.find('\n'), 40);
+    return cut >= s.size() ? fmt::format("'{}'", s) : fmt::format("'{}...'", s.substr(0, cut));
+  }
   if (n.IsSequence()) return "a list";
   if (n.IsMap()) return "a map";
   return "nothing";
@@ -95,6 +100,12 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
     return {};
   }
   const std::string& s = node.Scalar();
+  if (s.find('\n') != std::string::npos && p.kind != ParamKind::kString) {
+    // yaml-cpp lets an unclosed quote run to the end of the file.
+    error(node, path,
+          fmt::format("the value {} runs over several lines: is a quote left open?", shown(node)));
+    return {};
+  }
   switch (p.kind) {
     case ParamKind::kInteger: {
       long long v = 0;

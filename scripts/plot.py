@@ -1,0 +1,399 @@
+#!/usr/bin/python3
+"""Plot the tables of a PBMS run.
+
+Usage: /usr/bin/python3 scripts/plot.py RUN_DIR      (or: ./pbms plot RUN_DIR)
+
+Reads RUN_DIR/results.h5 and writes PNG files next to it, one per stage that
+has curves (one per table for stage kinds this script does not know). Prints
+the path of every PNG it writes. Exit status: 0 on success, also when there
+is nothing to plot; 1 when results.h5 is missing or unreadable.
+
+Layout of results.h5 (written by the coupler):
+  /<stage>                 group, attrs kind, status, wall_s (+ driver attrs)
+  /<stage>/<scalar>        scalar float dataset, attr unit (+ std_error)
+  /<stage>/<table>/<col>   1-D float dataset, attr unit
+Pressures are stored in bar (metal units); plots show GPa (1 GPa = 1e4 bar).
+"""
+
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+try:
+    import h5py  # noqa: E402
+except ImportError:  # pragma: no cover - the launcher installs python3-h5py
+    sys.exit("plot.py: error: h5py is missing; install python3-h5py "
+             "(and run this script with /usr/bin/python3)")
+
+DPI = 120
+BAR_PER_GPA = 1.0e4
+
+
+# ---------------------------------------------------------------- helpers
+
+def text(value):
+    """An HDF5 string attribute as str (h5py returns bytes for fixed-length strings)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    if isinstance(value, np.ndarray) and value.shape == ():
+        return text(value[()])
+    return str(value)
+
+
+def attr(obj, name, default=None):
+    return text(obj.attrs[name]) if name in obj.attrs else default
+
+
+def pretty_unit(unit):
+    """'Å^3' -> 'Å³'; '1' (dimensionless) -> ''."""
+    if unit is None or unit in ("", "1"):
+        return ""
+    sup = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+    return re.sub(r"\^(-?\d+)", lambda m: m.group(1).translate(sup), unit)
+
+
+def label(name, unit):
+    u = pretty_unit(unit)
+    return f"{name} ({u})" if u else name
+
+
+def safe(name):
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
+
+
+class Table:
+    """A table subgroup: columns as float arrays, with units."""
+
+    def __init__(self, group):
+        self.name = group.name.rsplit("/", 1)[-1]
+        self.columns = {}
+        self.units = {}
+        for key, ds in group.items():
+            if isinstance(ds, h5py.Dataset) and ds.ndim == 1:
+                self.columns[key] = np.asarray(ds[()], dtype=float)
+                self.units[key] = attr(ds, "unit", "")
+        # h5py lists links in creation order when the file tracks it, else by name.
+        self.order = list(self.columns)
+        self.attrs = {k: text(v) for k, v in group.attrs.items()}
+
+    def has(self, *names):
+        return all(n in self.columns for n in names)
+
+    def __getitem__(self, name):
+        return self.columns[name]
+
+    def get(self, name):
+        return self.columns.get(name)
+
+
+class Stage:
+    def __init__(self, name, group):
+        self.name = name
+        self.kind = attr(group, "kind", "")
+        self.status = attr(group, "status", "")
+        self.attrs = {k: text(v) for k, v in group.attrs.items()}
+        self.scalars = {}
+        self.scalar_units = {}
+        self.scalar_errors = {}
+        self.tables = {}
+        for key, obj in group.items():
+            if isinstance(obj, h5py.Group):
+                t = Table(obj)
+                if t.columns:
+                    self.tables[key] = t
+            elif isinstance(obj, h5py.Dataset) and obj.shape == ():
+                try:
+                    self.scalars[key] = float(obj[()])
+                except (TypeError, ValueError):
+                    continue
+                self.scalar_units[key] = attr(obj, "unit", "")
+                if "std_error" in obj.attrs:
+                    self.scalar_errors[key] = float(obj.attrs["std_error"])
+
+    def scalar(self, key):
+        return self.scalars.get(key)
+
+    def float_attr(self, key):
+        try:
+            return float(self.attrs[key])
+        except (KeyError, ValueError):
+            return None
+
+
+def finish(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    print(path)
+    return [path]
+
+
+def errs(table, name, scale=1.0):
+    e = table.get(name + "_std_error")
+    if e is None or not np.all(np.isfinite(e)):
+        return None
+    return e * scale
+
+
+def fmt_err(value, error):
+    """3.63165 ± 0.00008: the value to the precision of its standard error."""
+    if error is None or not np.isfinite(error) or error <= 0:
+        return f"{value:.4g}"
+    decimals = max(0, 1 - int(np.floor(np.log10(error))))
+    if decimals > 8:
+        return f"{value:.6g} ± {error:.1g}"
+    return f"{value:.{decimals}f} ± {error:.{decimals}f}"
+
+
+# ---------------------------------------------------------------- md_isotherm
+
+def birch_murnaghan_pressure(ratio, b0, b0p):
+    """Third-order Birch-Murnaghan P(V/V0), in the units of b0."""
+    x = ratio ** (-2.0 / 3.0)  # (V0/V)^(2/3)
+    return 1.5 * b0 * (x ** 3.5 - x ** 2.5) * (1.0 + 0.75 * (b0p - 4.0) * (x - 1.0))
+
+
+def plot_isotherm(stage, outdir):
+    t = stage.tables.get("isotherm")
+    if t is None or not (t.has("pressure") and (t.has("volume_ratio") or t.has("volume_per_atom"))):
+        return None  # not the expected layout: let the generic plot handle it
+    b0 = stage.scalar("bulk_modulus")
+    b0p = stage.scalar("bulk_modulus_derivative")
+    v0 = stage.scalar("equilibrium_volume")
+    p = t["pressure"] / BAR_PER_GPA
+    p_err = errs(t, "pressure", 1.0 / BAR_PER_GPA)
+    if t.has("volume_ratio"):
+        ratio, ratio_err = t["volume_ratio"], errs(t, "volume_ratio")
+    else:
+        ratio = t["volume_per_atom"] / v0
+        e = errs(t, "volume_per_atom")
+        ratio_err = None if e is None else e / v0
+    temp = t.get("temperature")
+    md_label = "MD (NPT average)"
+    if temp is not None and len(temp):
+        md_label = f"MD, {np.mean(temp):.0f} K (NPT average)"
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    ax.errorbar(p, ratio, xerr=p_err, yerr=ratio_err, fmt="o", ms=6, capsize=3,
+                color="C0", label=md_label, zorder=3)
+    if b0 is not None and b0p is not None and np.isfinite(b0) and np.isfinite(b0p):
+        lo, hi = min(p.min(), 0.0), p.max()
+        pad = 0.04 * (hi - lo if hi > lo else 1.0)
+        r = np.linspace(0.5, 1.2, 4001)
+        pr = birch_murnaghan_pressure(r, b0, b0p)
+        keep = (pr >= lo - pad) & (pr <= hi + pad)
+        if keep.any():
+            ax.plot(pr[keep], r[keep], "-", color="C3", lw=1.6, zorder=2,
+                    label=("3rd-order Birch–Murnaghan fit\n"
+                           f"$B_0$ = {b0:.1f} GPa, $B_0'$ = {b0p:.2f}"))
+    ax.set_xlabel("pressure P (GPa)")
+    v0_text = f", $V_0$ = {v0:.4g} {pretty_unit(stage.scalar_units.get('equilibrium_volume', ''))}/atom" \
+        if v0 is not None else ""
+    ax.set_ylabel("V / V$_0$")
+    ax.set_title(f"{stage.name}: pressure–volume isotherm{v0_text}")
+    a0 = stage.scalar("lattice_parameter")
+    if a0 is not None:
+        unit = pretty_unit(stage.scalar_units.get("lattice_parameter", "Å"))
+        where = ""
+        if t.has("pressure_target") and len(t["pressure_target"]):
+            where = f" at {np.min(t['pressure_target']) / BAR_PER_GPA:g} GPa"
+        ax.text(0.97, 0.97, f"lattice parameter{where}:\na = {fmt_err(a0, stage.scalar_errors.get('lattice_parameter'))} {unit}",
+                transform=ax.transAxes, ha="right", va="top", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower left", fontsize=9)
+    return finish(fig, os.path.join(outdir, f"{safe(stage.name)}_isotherm.png"))
+
+
+# ---------------------------------------------------------------- md_tension
+
+def plot_tension(stage, outdir):
+    t = stage.tables.get("stress_strain")
+    if t is None or not t.has("strain", "stress"):
+        return None
+    strain, stress = t["strain"], t["stress"]
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    ax.plot(strain, stress, "o", ms=3, color="C0", label="MD", zorder=2)
+    e = stage.scalar("youngs_modulus")
+    fit_max = stage.float_attr("fit_max_strain")
+    intercept = stage.float_attr("fit_intercept_gpa") or 0.0
+    if e is not None and np.isfinite(e):
+        x_max = fit_max if fit_max is not None else float(np.max(strain))
+        x = np.linspace(0.0, x_max, 50)
+        ax.plot(x, e * x + intercept, "-", color="C3", lw=2, zorder=3,
+                label=(f"linear fit, strain ≤ {x_max:g}\n"
+                       f"E = {fmt_err(e, stage.scalar_errors.get('youngs_modulus'))} GPa"))
+    ax.set_xlabel(label("strain", t.units.get("strain")))
+    ax.set_ylabel(label("stress", t.units.get("stress", "GPa")))
+    title = f"{stage.name}: stress–strain"
+    temp = t.get("temperature")
+    if temp is not None and len(temp):
+        title += f" ({np.mean(temp):.0f} K)"
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=9)
+    return finish(fig, os.path.join(outdir, f"{safe(stage.name)}_stress_strain.png"))
+
+
+# ---------------------------------------------------------------- md_elastic
+
+def plot_elastic(stage, outdir):
+    t = stage.tables.get("strains")
+    if t is None or not t.has("mode", "strain", "stress_xx", "stress_yy", "stress_xy"):
+        return None
+    temps = t["temperature"] if t.has("temperature") else np.zeros_like(t["strain"])
+    unit = t.units.get("stress_xx", "GPa")
+    fig, (ax_n, ax_s) = plt.subplots(1, 2, figsize=(10.0, 4.4))
+    markers = ["o", "s", "^", "D"]
+    for i, temp in enumerate(np.unique(temps)):
+        hot = temp > 0
+        suffix = "_at_t" if hot else ""
+        tag = f"{temp:.0f} K"
+        fill = "none" if hot else None
+        m = markers[i % len(markers)]
+        sel = temps == temp
+        normal = sel & (t["mode"] == 0)
+        shear = sel & (t["mode"] == 1)
+        e_n, e_s = t["strain"][normal], t["strain"][shear]
+        span_n = max(np.max(np.abs(e_n)) if e_n.size else 0.0, 1e-12) * 1.25
+        span_s = max(np.max(np.abs(e_s)) if e_s.size else 0.0, 1e-12) * 1.25
+        x_n = np.array([-span_n, span_n])
+        x_s = np.array([-span_s, span_s])
+        ls = "--" if hot else "-"
+        for col, const, color in (("stress_xx", "c11", "C0"), ("stress_yy", "c12", "C1")):
+            ax_n.plot(e_n, t[col][normal], m, color=color, mfc=fill, ms=7,
+                      label=f"$\\sigma_{{{col[-2:]}}}$, {tag}")
+            c = stage.scalar(const + suffix)
+            if c is not None:
+                ax_n.plot(x_n, c * x_n, ls, color=color, lw=1.2,
+                          label=f"slope $C_{{{const[1:]}}}$ = {c:.1f} GPa ({tag})")
+        ax_s.plot(e_s, t["stress_xy"][shear], m, color="C2", mfc=fill, ms=7,
+                  label=f"$\\sigma_{{xy}}$, {tag}")
+        c = stage.scalar("c44" + suffix)
+        if c is not None:
+            ax_s.plot(x_s, c * x_s, ls, color="C2", lw=1.2,
+                      label=f"slope $C_{{44}}$ = {c:.1f} GPa ({tag})")
+    ax_n.set_xlabel(r"normal strain $\varepsilon_{xx}$")
+    ax_n.set_ylabel(label("stress", unit))
+    ax_n.set_title(f"{stage.name}: normal strain")
+    ax_s.set_xlabel(r"engineering shear strain $\gamma_{xy}$")
+    ax_s.set_ylabel(label("stress", unit))
+    ax_s.set_title(f"{stage.name}: shear strain")
+    for ax in (ax_n, ax_s):
+        ax.axhline(0, color="0.6", lw=0.6)
+        ax.axvline(0, color="0.6", lw=0.6)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left")
+    return finish(fig, os.path.join(outdir, f"{safe(stage.name)}_elastic.png"))
+
+
+# ---------------------------------------------------------------- generic
+
+# Columns that, when present, make the natural abscissa of a table.
+PREFERRED_X = ("time", "step", "strain", "x", "position", "distance", "pressure_target",
+               "pressure", "generation", "iteration")
+
+
+def x_column(table):
+    for key in ("x", "x_column", "abscissa"):
+        if table.attrs.get(key) in table.columns:
+            return table.attrs[key]
+    for name in PREFERRED_X:
+        if name in table.columns:
+            return name
+    return table.order[0]
+
+
+def plot_generic(stage, outdir):
+    written = []
+    for tname, t in stage.tables.items():
+        x_name = x_column(t)
+        x = t[x_name]
+        ys = [c for c in t.order
+              if c != x_name and not (c.endswith("_std_error") and c[:-10] in t.columns)]
+        ys = [c for c in ys if t[c].shape == x.shape]
+        if not ys or x.size == 0:
+            continue
+        n = len(ys)
+        ncols = 1 if n == 1 else 2
+        nrows = (n + ncols - 1) // ncols
+        fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, 3.2 * nrows + 0.5),
+                                 sharex=True, squeeze=False)
+        style = "o-" if x.size <= 50 else "-"
+        for ax, col in zip(axes.flat, ys):
+            err = errs(t, col)
+            if err is not None and x.size <= 50:
+                ax.errorbar(x, t[col], yerr=err, fmt=style, ms=4, capsize=2)
+            else:
+                ax.plot(x, t[col], style, ms=4)
+                if err is not None:  # many points: the standard error as a band
+                    ax.fill_between(x, t[col] - err, t[col] + err, alpha=0.25, lw=0)
+            ax.set_ylabel(label(col, t.units.get(col)))
+            ax.grid(alpha=0.3)
+        for ax in axes.flat[n:]:
+            ax.set_visible(False)
+        for ax in axes[-1, :]:
+            ax.set_xlabel(label(x_name, t.units.get(x_name)))
+        if n % ncols and nrows > 1:  # the last row is short: label the axis above the gap
+            axes[-2, -1].set_xlabel(label(x_name, t.units.get(x_name)))
+            axes[-2, -1].xaxis.set_tick_params(labelbottom=True)
+        fig.suptitle(f"{stage.name} ({stage.kind or 'unknown kind'}): {tname}")
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_{safe(tname)}.png"))
+    return written
+
+
+PLOTTERS = {
+    "md_isotherm": plot_isotherm,
+    "md_tension": plot_tension,
+    "md_elastic": plot_elastic,
+}
+
+
+# ---------------------------------------------------------------- main
+
+def main(argv):
+    if len(argv) != 2 or argv[1] in ("-h", "--help"):
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 0 if len(argv) == 2 else 1
+    run_dir = argv[1]
+    path = os.path.join(run_dir, "results.h5")
+    if not os.path.isfile(path):
+        print(f"plot.py: error: {path} not found (is '{run_dir}' a run directory "
+              f"of a finished ./pbms run?)", file=sys.stderr)
+        return 1
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        print(f"plot.py: error: cannot read {path}: {e}", file=sys.stderr)
+        return 1
+
+    written = []
+    with f:
+        for name, group in f.items():
+            if not isinstance(group, h5py.Group):
+                continue
+            stage = Stage(name, group)
+            if stage.status and stage.status != "ok":
+                print(f"plot.py: skipping stage '{name}' (status: {stage.status})",
+                      file=sys.stderr)
+                continue
+            if not stage.tables:
+                continue
+            plotter = PLOTTERS.get(stage.kind)
+            result = plotter(stage, run_dir) if plotter else None
+            if result is None:
+                result = plot_generic(stage, run_dir)
+            written += result
+    if not written:
+        print(f"plot.py: nothing to plot in {path} (no finished stage with tables)",
+              file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,7 @@
+source "$(dirname "$0")/lib.sh"
+run="$1"
+"$PBMS" plot "$run" || fail "pbms plot failed"
+png="$run/isotherm_isotherm.png"
+[ -s "$png" ] || fail "no $png"
+head -c 8 "$png" | od -An -c | grep -q "P   N   G" || fail "$png is not a PNG"
+echo "1 passed, 0 failed"
