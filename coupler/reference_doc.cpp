@@ -29,6 +29,7 @@ void table(std::string& out, const std::vector<const config::Param*>& fields) {
                       : p->default_value ? fmt::format("`{}`", scalar_text(*p->default_value))
                                          : "—";
     std::string doc = p->doc;
+    if (!doc.empty() && doc.back() != '.') doc += '.';
     if (p->min) doc += fmt::format(" Must be {} {}.", p->min_exclusive ? ">" : "≥", *p->min);
     if (p->max) doc += fmt::format(" Must be ≤ {}.", *p->max);
     if (p->allow_reference) doc += " May be `{from: <stage>.<output>}`.";
