@@ -22,23 +22,24 @@ std::vector<std::string> check_capabilities(const std::vector<config::StageConfi
                                      h.protocol_version, protocol::kProtocolVersion));
     }
     if (i < sizes.size() && h.ranks != sizes[i]) {
-      problems.push_back(fmt::format("{} reports {} ranks but runs on {}", h.program, h.ranks,
-                                     sizes[i]));
+      problems.push_back(
+          fmt::format("{} reports {} ranks but runs on {}", h.program, h.ranks, sizes[i]));
     }
   }
   for (const auto& s : stages) {
     const auto it = std::find_if(hellos.begin(), hellos.end(),
                                  [&](const protocol::Hello& h) { return h.program == s.program; });
     if (it == hellos.end()) {
-      problems.push_back(fmt::format("stage '{}' needs {}, which is not part of this job", s.name,
-                                     s.program));
+      problems.push_back(
+          fmt::format("stage '{}' needs {}, which is not part of this job", s.name, s.program));
       continue;
     }
     if (std::find(it->capabilities.begin(), it->capabilities.end(), s.kind) ==
         it->capabilities.end()) {
-      problems.push_back(fmt::format("stage '{}' asks {} for kind '{}', which it does not "
-                                     "declare (it declares: {})",
-                                     s.name, s.program, s.kind, fmt::join(it->capabilities, ", ")));
+      problems.push_back(
+          fmt::format("stage '{}' asks {} for kind '{}', which it does not "
+                      "declare (it declares: {})",
+                      s.name, s.program, s.kind, fmt::join(it->capabilities, ", ")));
     }
   }
   return problems;

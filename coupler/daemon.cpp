@@ -167,7 +167,8 @@ class Daemon {
       w.accepted = accepted;
       w.reason = reason;
       for (const auto& o : links_) {
-        if (o.app.appnum != l.app.appnum) w.peers.push_back({o.hello.program, o.app.appnum, o.app.size});
+        if (o.app.appnum != l.app.appnum)
+          w.peers.push_back({o.hello.program, o.app.appnum, o.app.size});
       }
       l.channel.send(w, 0);
     }
@@ -229,8 +230,8 @@ class Daemon {
           if (auto line = meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
             console_.progress(*line);
           }
-          if (auto line = file_meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase,
-                                            now())) {
+          if (auto line =
+                  file_meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
             if (file_log_) file_log_->info(*line);
           }
         } else if (auto* d = std::get_if<protocol::StageDone>(&*m)) {
@@ -248,9 +249,9 @@ class Daemon {
           fail(f->program, f->rank, f->stage, f->step, f->message);
         } else {
           fail(l.hello.program, source, stage.name, -1,
-               fmt::format("protocol error: unexpected {} message",
-                           std::visit([](const auto& x) { return protocol::type_name(x.kType); },
-                                      *m)));
+               fmt::format(
+                   "protocol error: unexpected {} message",
+                   std::visit([](const auto& x) { return protocol::type_name(x.kType); }, *m)));
         }
       }
       if (got) {
@@ -265,10 +266,10 @@ class Daemon {
   [[noreturn]] void fail(const std::string& program, int rank, const std::string& stage,
                          int64_t step, const std::string& message) {
     console_.end_progress();
-    const std::string where =
-        stage.empty() ? std::string()
-                      : fmt::format(" in stage '{}'{}", stage,
-                                    step >= 0 ? fmt::format(" at step {}", step) : "");
+    const std::string where = stage.empty()
+                                  ? std::string()
+                                  : fmt::format(" in stage '{}'{}", stage,
+                                                step >= 0 ? fmt::format(" at step {}", step) : "");
     const std::string text = fmt::format("{} rank {} failed{}: {}", program, rank, where, message);
     std::cerr << "pbms: error: " << text << "\n" << std::flush;
     if (file_log_) file_log_->error(text);

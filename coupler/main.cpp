@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "daemon.hpp"
 #include "driver_catalog.hpp"
@@ -98,9 +98,8 @@ int main(int argc, char** argv) {
     if (*validate) {
       auto wf = load_or_report(config, drivers, ranks);
       if (!wf) return 1;
-      std::cout << fmt::format("{}: ok ({} stage{}, run directory {})\n", config,
-                               wf->stages.size(), wf->stages.size() == 1 ? "" : "s",
-                               wf->run_dir().string());
+      std::cout << fmt::format("{}: ok ({} stage{}, run directory {})\n", config, wf->stages.size(),
+                               wf->stages.size() == 1 ? "" : "s", wf->run_dir().string());
       return 0;
     }
     if (*plan) {

@@ -42,7 +42,8 @@ DeadRank parse_mpirun_output(const std::string& text) {
   std::smatch m;
   static const std::regex signal_re(
       R"(process rank (\d+) with PID \d+ on node \S+ exited on signal (\d+) \(([^)]*)\))");
-  static const std::regex exit_re(R"(Process name:\s*\[\[\d+,\d+\],(\d+)\][\s\S]*?Exit code:\s*(\d+))");
+  static const std::regex exit_re(
+      R"(Process name:\s*\[\[\d+,\d+\],(\d+)\][\s\S]*?Exit code:\s*(\d+))");
   static const std::regex abort_re(R"(MPI_ABORT was invoked on rank (\d+))");
   if (std::regex_search(text, m, signal_re)) {
     d.world_rank = std::stoi(m[1]);
@@ -67,9 +68,10 @@ int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
   }
   const auto manifest_path = run_dir / "manifest.yaml";
   if (!std::filesystem::exists(manifest_path)) {
-    std::cerr << fmt::format("pbms: the job ended (exit code {}) before the run directory was "
-                             "set up; see the messages above\n",
-                             mpirun_exit_code);
+    std::cerr << fmt::format(
+        "pbms: the job ended (exit code {}) before the run directory was "
+        "set up; see the messages above\n",
+        mpirun_exit_code);
     return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
   }
   YAML::Node manifest = YAML::LoadFile(manifest_path.string());
@@ -77,11 +79,11 @@ int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
   if (status == "ok") return mpirun_exit_code;
   if (status == "failed") {
     const auto f = manifest["failure"];
-    std::cerr << fmt::format("pbms: run failed: {} rank {}{}: {}\n       details: {}\n",
-                             f["program"].as<std::string>("?"), f["rank"].as<int>(-1),
-                             f["stage"] ? fmt::format(" in stage '{}'", f["stage"].as<std::string>())
-                                        : "",
-                             f["message"].as<std::string>(""), (run_dir / "log.txt").string());
+    std::cerr << fmt::format(
+        "pbms: run failed: {} rank {}{}: {}\n       details: {}\n",
+        f["program"].as<std::string>("?"), f["rank"].as<int>(-1),
+        f["stage"] ? fmt::format(" in stage '{}'", f["stage"].as<std::string>()) : "",
+        f["message"].as<std::string>(""), (run_dir / "log.txt").string());
     return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
   }
 

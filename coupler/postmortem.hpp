@@ -10,7 +10,7 @@ namespace pbms::coupler {
 
 struct DeadRank {
   int world_rank = -1;
-  int signal = 0;       // 0 if it exited
+  int signal = 0;  // 0 if it exited
   int exit_code = 0;
   std::string signal_name;
 };

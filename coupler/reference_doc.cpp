@@ -25,7 +25,7 @@ std::string cell(std::string s) {
 void table(std::string& out, const std::vector<const config::Param*>& fields) {
   out += "| key | type | default | description |\n|---|---|---|---|\n";
   for (const auto* p : fields) {
-    std::string def = p->required ? "**required**"
+    std::string def = p->required        ? "**required**"
                       : p->default_value ? fmt::format("`{}`", scalar_text(*p->default_value))
                                          : "—";
     std::string doc = p->doc;
@@ -84,9 +84,10 @@ std::string config_reference_markdown(const std::vector<config::DriverDescriptio
       out += fmt::format("### stage kind `{}` ({})\n\n{}.\n\n", s.kind, s.program, s.doc);
       table(out, ptrs(s.params));
       if (!s.outputs.empty()) {
-        out += "Outputs (scalars go to `summary.yaml` and may be referenced by later stages;\n"
-               "tables go to `results.h5`):\n\n| output | shape | unit | description |\n"
-               "|---|---|---|---|\n";
+        out +=
+            "Outputs (scalars go to `summary.yaml` and may be referenced by later stages;\n"
+            "tables go to `results.h5`):\n\n| output | shape | unit | description |\n"
+            "|---|---|---|---|\n";
         for (const auto& o : s.outputs) {
           out += fmt::format("| `{}` | {} | {} | {} |\n", o.name,
                              o.shape == config::OutputSpec::Shape::kScalar ? "scalar" : "table",

@@ -25,8 +25,7 @@ namespace pbms::coupler {
 namespace {
 
 double wall_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 YAML::Node scalar_node(const ScalarResult& s) {
@@ -167,8 +166,8 @@ void RunRecord::stage_failed(const std::string& stage, const std::string& kind) 
   }
 }
 
-void RunRecord::failed(const std::string& program, int rank, const std::string& stage,
-                       int64_t step, const std::string& message) {
+void RunRecord::failed(const std::string& program, int rank, const std::string& stage, int64_t step,
+                       const std::string& message) {
   YAML::Node f;
   f["program"] = program;
   f["rank"] = rank;

@@ -35,8 +35,7 @@ class RunRecord {
   void set_software(const std::string& program, const std::vector<std::string>& items);
   void stage_started(const config::StageConfig& stage);
   void progress(const std::string& stage, int64_t step, int64_t total, double sim_time_ps);
-  void stage_finished(const config::StageConfig& stage, const StageResults& results,
-                      double wall_s);
+  void stage_finished(const config::StageConfig& stage, const StageResults& results, double wall_s);
   void stage_failed(const std::string& stage, const std::string& kind);
   void failed(const std::string& program, int rank, const std::string& stage, int64_t step,
               const std::string& message);

@@ -50,7 +50,9 @@ void Lammps::command(const std::string& cmd) {
   lammps_command(handle_, cmd.c_str());
 }
 
-void Lammps::comment(const std::string& text) { script_.push_back("# " + text); }
+void Lammps::comment(const std::string& text) {
+  script_.push_back("# " + text);
+}
 
 void Lammps::run(int64_t steps, int64_t chunk, const std::function<void(int64_t)>& after_chunk) {
   script_.push_back(fmt::format("run {}", steps));
@@ -110,9 +112,13 @@ std::vector<double> Lammps::gather(const std::string& name) const {
   return out;
 }
 
-int64_t Lammps::natoms() const { return static_cast<int64_t>(lammps_get_natoms(handle_)); }
+int64_t Lammps::natoms() const {
+  return static_cast<int64_t>(lammps_get_natoms(handle_));
+}
 
-int Lammps::version() const { return lammps_version(handle_); }
+int Lammps::version() const {
+  return lammps_version(handle_);
+}
 
 void Lammps::write_script(const std::filesystem::path& path, const std::string& header) const {
   std::ofstream out(path);

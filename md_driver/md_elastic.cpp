@@ -12,7 +12,9 @@ using config::OutputSpec;
 using config::Param;
 using units::Dimension;
 
-double cubic_bulk_modulus(double c11, double c12) { return (c11 + 2.0 * c12) / 3.0; }
+double cubic_bulk_modulus(double c11, double c12) {
+  return (c11 + 2.0 * c12) / 3.0;
+}
 double cubic_youngs_modulus_100(double c11, double c12) {
   return (c11 - c12) * (c11 + 2.0 * c12) / (c11 + c12);
 }
@@ -21,12 +23,14 @@ config::StageKindSpec ElasticStage::spec() {
   config::StageKindSpec s;
   s.kind = "md_elastic";
   s.program = "md_driver";
-  s.doc = "Cubic elastic constants from +/- finite strains: relaxed at 0 K, and optionally "
-          "averaged by NVT MD at a temperature";
+  s.doc =
+      "Cubic elastic constants from +/- finite strains: relaxed at 0 K, and optionally "
+      "averaged by NVT MD at a temperature";
   s.material_kinds = {"eam_alloy", "eam_fs"};
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
-      Param::int_list("cells", "Unit cells along x, y, z").def(std::vector<int>{4, 4, 4})
+      Param::int_list("cells", "Unit cells along x, y, z")
+          .def(std::vector<int>{4, 4, 4})
           .length(3, 3)
           .at_least(2),
       Param::real("strain", Dimension::kNone, "Magnitude of the applied strains")
@@ -76,8 +80,8 @@ enum class Mode { kNormal, kShear };
 // Strain the relaxed box, then read the stress: at 0 K after relaxing the
 // atoms, at T as an NVT average.
 Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::array<int, 3>& cells,
-                       double a, Mode mode, double e, double temperature,
-                       const YAML::Node& p, const std::string& tag, int64_t salt) {
+                       double a, Mode mode, double e, double temperature, const YAML::Node& p,
+                       const std::string& tag, int64_t salt) {
   Lammps lmp(ctx.comm(), ctx.stage_dir() / (tag + ".log"));
   build_crystal(lmp, mat, a, cells, "p p p");
   lmp.command("change_box all triclinic");
@@ -130,8 +134,8 @@ void ElasticStage::run(StageContext& ctx) {
   const auto cells = cells_of(p["cells"]);
   const double e = p["strain"].as<double>();
   const double temperature = p["temperature"].as<double>();
-  const double a_t = p["lattice_constant"] ? p["lattice_constant"].as<double>()
-                                           : mat.lattice_constant;
+  const double a_t =
+      p["lattice_constant"] ? p["lattice_constant"].as<double>() : mat.lattice_constant;
   auto& r = ctx.results();
   std::vector<double> col_t, col_mode, col_e, col_xx, col_yy, col_zz, col_xy;
 

@@ -20,8 +20,9 @@ config::StageKindSpec IsothermStage::spec() {
   config::StageKindSpec s;
   s.kind = "md_isotherm";
   s.program = "md_driver";
-  s.doc = "Pressure-volume isotherm of a periodic crystal by NPT MD (Nose-Hoover), with a "
-          "Birch-Murnaghan fit";
+  s.doc =
+      "Pressure-volume isotherm of a periodic crystal by NPT MD (Nose-Hoover), with a "
+      "Birch-Murnaghan fit";
   s.material_kinds = {"eam_alloy", "eam_fs"};
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
@@ -32,7 +33,8 @@ config::StageKindSpec IsothermStage::spec() {
           .length(3, 100)
           .at_least(-1.0e5)
           .at_most(2.0e6),
-      Param::int_list("cells", "Unit cells along x, y, z").def(std::vector<int>{8, 8, 8})
+      Param::int_list("cells", "Unit cells along x, y, z")
+          .def(std::vector<int>{8, 8, 8})
           .length(3, 3)
           .at_least(2),
       Param::real("timestep", Dimension::kTime, "MD time step").def(0.002).above(0).at_most(0.01),
@@ -58,8 +60,7 @@ config::StageKindSpec IsothermStage::spec() {
        "Mean lattice parameter at the lowest pressure"},
       {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa", "B0 of the Birch-Murnaghan fit"},
       {"bulk_modulus_derivative", OutputSpec::Shape::kScalar, "1", "B0' of the fit"},
-      {"equilibrium_volume", OutputSpec::Shape::kScalar, "Å^3",
-       "V0 per atom of the fit (P = 0)"},
+      {"equilibrium_volume", OutputSpec::Shape::kScalar, "Å^3", "V0 per atom of the fit (P = 0)"},
       {"fit_rms_residual", OutputSpec::Shape::kScalar, "GPa", "RMS pressure misfit of the fit"},
       {"isotherm", OutputSpec::Shape::kTable, "",
        "Per pressure: target and mean pressure, volume per atom, V/V0, lattice parameter, "
@@ -82,9 +83,10 @@ void IsothermStage::run(StageContext& ctx) {
   const double pdamp = p["barostat_damping"].as<double>();
   const int64_t traj_every = p["trajectory_every"].as<int64_t>();
   if (n_prod < 10 * every) {
-    throw Error(fmt::format("stage '{}': production ({} steps) must span at least 10 samples "
-                            "(sample_every = {})",
-                            ctx.stage(), n_prod, every));
+    throw Error(
+        fmt::format("stage '{}': production ({} steps) must span at least 10 samples "
+                    "(sample_every = {})",
+                    ctx.stage(), n_prod, every));
   }
   const int64_t per_point = n_equil + n_prod;
   const int64_t total = per_point * static_cast<int64_t>(pressures.size());
@@ -102,8 +104,8 @@ void IsothermStage::run(StageContext& ctx) {
     lmp.command(fmt::format("timestep {}", dt));
     lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
                             2.0 * temperature, lammps_seed(ctx.seed(), i)));
-    lmp.command(fmt::format("fix npt all npt temp {0} {0} {1} iso {2} {2} {3}", temperature,
-                            tdamp, pressures[i], pdamp));
+    lmp.command(fmt::format("fix npt all npt temp {0} {0} {1} iso {2} {2} {3}", temperature, tdamp,
+                            pressures[i], pdamp));
     lmp.command("thermo 1000");
     lmp.command("thermo_style custom step temp press vol lx pe");
     TrajectoryRecorder traj(ctx, lmp, tag + ".h5md", traj_every, {true, true, true});
@@ -121,13 +123,15 @@ void IsothermStage::run(StageContext& ctx) {
     lmp.command("reset_timestep 0");
     lmp.command(fmt::format("variable alat equal lx/{}", cells[0]));
     lmp.command(fmt::format("variable vatom equal vol/{}", n_atoms));
-    lmp.command(fmt::format("fix samples all vector {} c_thermo_press v_vatom v_alat c_thermo_temp", every));
+    lmp.command(fmt::format("fix samples all vector {} c_thermo_press v_vatom v_alat c_thermo_temp",
+                            every));
     lmp.command(fmt::format("fix means all ave/time {0} {1} {2} c_thermo_press v_vatom v_alat",
                             every, n_prod / every, n_prod / every * every));
     lmp.run(n_prod, chunk_for(total, traj_every), report("production", n_equil));
     // Replayed by a plain `lmp -in` this prints the same averages.
-    lmp.command("print \"PBMS_AVERAGES pressure $(f_means[1]) volume_per_atom $(f_means[2]) "
-                "lattice_parameter $(f_means[3])\"");
+    lmp.command(
+        "print \"PBMS_AVERAGES pressure $(f_means[1]) volume_per_atom $(f_means[2]) "
+        "lattice_parameter $(f_means[3])\"");
 
     const auto rows = lmp.fix_array("samples", 4);
     // Drop the sample taken at the first production step (end of the
@@ -144,9 +148,9 @@ void IsothermStage::run(StageContext& ctx) {
     alat_err.push_back(analysis::block_standard_error(aa));
     temp.push_back(analysis::mean(tt));
     if (ctx.rank() == 0) {
-      lmp.write_script(ctx.stage_dir() / (tag + ".in"),
-                       fmt::format("md_isotherm point {}: T = {} K, P = {} bar", i, temperature,
-                                   pressures[i]));
+      lmp.write_script(
+          ctx.stage_dir() / (tag + ".in"),
+          fmt::format("md_isotherm point {}: T = {} K, P = {} bar", i, temperature, pressures[i]));
       ctx.results().files.push_back(ctx.stage() + "/" + tag + ".in");
       if (traj.enabled()) ctx.results().files.push_back(traj.relative_path());
     }

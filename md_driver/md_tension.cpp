@@ -19,8 +19,9 @@ config::StageKindSpec TensionStage::spec() {
   config::StageKindSpec s;
   s.kind = "md_tension";
   s.program = "md_driver";
-  s.doc = "Tension of a nanowire with free surfaces, pulled along x by rigid grips at a "
-          "constant strain rate, Nose-Hoover NVT";
+  s.doc =
+      "Tension of a nanowire with free surfaces, pulled along x by rigid grips at a "
+      "constant strain rate, Nose-Hoover NVT";
   s.material_kinds = {"eam_alloy", "eam_fs"};
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
@@ -46,7 +47,9 @@ config::StageKindSpec TensionStage::spec() {
           .above(0),
       Param::integer("grip_cells", "Thickness of each rigid grip in unit cells").def(2).at_least(1),
       Param::real("timestep", Dimension::kTime, "MD time step").def(0.002).above(0).at_most(0.01),
-      Param::real("equilibration", Dimension::kTime, "NVT time before loading").def(10.0).at_least(0),
+      Param::real("equilibration", Dimension::kTime, "NVT time before loading")
+          .def(10.0)
+          .at_least(0),
       Param::integer("sample_every", "Steps between stress samples").def(50).above(0),
       Param::integer("trajectory_every", "Steps between H5MD frames; 0 writes none")
           .def(0)
@@ -66,8 +69,8 @@ void TensionStage::run(StageContext& ctx) {
   const YAML::Node& p = ctx.params();
   const MdMaterial mat = material_of(ctx);
   const auto cells = cells_of(p["cells"]);
-  const double a = p["lattice_constant"] ? p["lattice_constant"].as<double>()
-                                         : mat.lattice_constant;
+  const double a =
+      p["lattice_constant"] ? p["lattice_constant"].as<double>() : mat.lattice_constant;
   const double temperature = p["temperature"].as<double>();
   const double rate = p["strain_rate"].as<double>();
   const double max_strain = p["max_strain"].as<double>();
@@ -120,10 +123,10 @@ void TensionStage::run(StageContext& ctx) {
   const double grip_len = grip * a;
   const double gauge = xhi - xlo - 2.0 * grip_len;
   const double grip_speed = 0.5 * rate * gauge;
-  lmp.command(fmt::format("region left_grip block INF {:.10g} INF INF INF INF units box",
-                          xlo + grip_len));
-  lmp.command(fmt::format("region right_grip block {:.10g} INF INF INF INF INF units box",
-                          xhi - grip_len));
+  lmp.command(
+      fmt::format("region left_grip block INF {:.10g} INF INF INF INF units box", xlo + grip_len));
+  lmp.command(
+      fmt::format("region right_grip block {:.10g} INF INF INF INF INF units box", xhi - grip_len));
   lmp.command("group left region left_grip");
   lmp.command("group right region right_grip");
   lmp.command("group grips union left right");
@@ -142,13 +145,13 @@ void TensionStage::run(StageContext& ctx) {
                           -grip_speed, grip_speed, xlo + grip_len, xhi - grip_len));
   // Stress from the forces the wire exerts on the grips (read before
   // setforce zeroes them), averaged over each sampling window.
-  lmp.command(fmt::format(
-      "variable stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}", area,
-      units::kBarPerEvPerA3 / units::kBarPerGPa));
+  lmp.command(
+      fmt::format("variable stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
+                  area, units::kBarPerEvPerA3 / units::kBarPerGPa));
   lmp.command(fmt::format("fix stress_avg all ave/time 1 {0} {0} v_stress", every));
   // Strain at the middle of the window the stress was averaged over.
-  lmp.command(fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1),
-                          rate));
+  lmp.command(
+      fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1), rate));
   lmp.command("variable stress_avg equal f_stress_avg");
   lmp.command("variable wire_temp equal c_wire_temp");
   lmp.command(fmt::format("fix samples all vector {} v_strain v_stress_avg v_wire_temp", every));
@@ -170,9 +173,10 @@ void TensionStage::run(StageContext& ctx) {
     }
   }
   if (fx.size() < 3) {
-    throw Error(fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
-                            "more often or raise fit_max_strain",
-                            ctx.stage(), fx.size(), fit_max));
+    throw Error(
+        fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
+                    "more often or raise fit_max_strain",
+                    ctx.stage(), fx.size(), fit_max));
   }
   const auto fit = analysis::fit_line(fx, fy);
   const auto peak = std::max_element(stress.begin(), stress.end()) - stress.begin();

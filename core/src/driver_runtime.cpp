@@ -33,7 +33,8 @@ void append_int(char* buf, size_t cap, size_t& len, long long v) {
   char digits[24];
   int n = 0;
   const bool neg = v < 0;
-  unsigned long long u = neg ? static_cast<unsigned long long>(-v) : static_cast<unsigned long long>(v);
+  unsigned long long u =
+      neg ? static_cast<unsigned long long>(-v) : static_cast<unsigned long long>(v);
   do {
     digits[n++] = static_cast<char>('0' + u % 10);
     u /= 10;
@@ -79,7 +80,9 @@ double seconds_since(Clock::time_point t0) {
 
 }  // namespace
 
-void set_current_step(int64_t step) { g_step.store(step); }
+void set_current_step(int64_t step) {
+  g_step.store(step);
+}
 
 class DriverRuntime;
 namespace {
@@ -87,7 +90,9 @@ DriverRuntime* g_runtime = nullptr;
 std::string (*g_finalize_describe)() = nullptr;
 }  // namespace
 
-void set_unexpected_finalize_handler(std::string (*describe)()) { g_finalize_describe = describe; }
+void set_unexpected_finalize_handler(std::string (*describe)()) {
+  g_finalize_describe = describe;
+}
 
 std::string describe_unexpected_finalize() {
   std::string text = g_finalize_describe ? g_finalize_describe() : std::string();
@@ -133,9 +138,9 @@ class DriverRuntime {
     f.step = g_step.load();
     f.message = message;
     std::cerr << fmt::format("pbms: {} rank {} failed{}: {}\n", f.program, f.rank,
-                             f.stage.empty() ? std::string()
-                                             : fmt::format(" in stage '{}' at step {}", f.stage,
-                                                           f.step),
+                             f.stage.empty()
+                                 ? std::string()
+                                 : fmt::format(" in stage '{}' at step {}", f.stage, f.step),
                              message)
               << std::flush;
     try {
@@ -235,8 +240,8 @@ class DriverRuntime {
 // ---------------------------------------------------------------- context
 
 StageContext::StageContext(DriverRuntime& runtime, std::string stage, std::string kind,
-                           YAML::Node params, YAML::Node materials,
-                           std::filesystem::path run_dir, uint64_t seed)
+                           YAML::Node params, YAML::Node materials, std::filesystem::path run_dir,
+                           uint64_t seed)
     : runtime_(runtime),
       stage_(std::move(stage)),
       kind_(std::move(kind)),
@@ -251,10 +256,18 @@ YAML::Node StageContext::material(const std::string& name) const {
   return m;
 }
 
-MPI_Comm StageContext::comm() const { return runtime_.local().get(); }
-int StageContext::rank() const { return runtime_.local().rank(); }
-int StageContext::size() const { return runtime_.local().size(); }
-MPI_Comm StageContext::peer(const std::string& program) const { return runtime_.peer(program); }
+MPI_Comm StageContext::comm() const {
+  return runtime_.local().get();
+}
+int StageContext::rank() const {
+  return runtime_.local().rank();
+}
+int StageContext::size() const {
+  return runtime_.local().size();
+}
+MPI_Comm StageContext::peer(const std::string& program) const {
+  return runtime_.peer(program);
+}
 
 std::filesystem::path StageContext::stage_dir() const {
   auto d = run_dir_ / stage_;
@@ -334,7 +347,8 @@ int run_driver(int argc, char** argv, const DriverInfo& info, const StageRegistr
           "Usage:\n  {0} --describe   print the stage kinds it runs and their parameters (YAML)\n"
           "  {0} --help       this text\n\nStage kinds:\n",
           info.program);
-      for (const auto& s : registry.specs()) std::cout << fmt::format("  {:16} {}\n", s.kind, s.doc);
+      for (const auto& s : registry.specs())
+        std::cout << fmt::format("  {:16} {}\n", s.kind, s.doc);
       return 0;
     }
   }

@@ -58,8 +58,7 @@ EosFit fit_birch_murnaghan(const std::vector<double>& volumes,
     if (pressures[i] < pressures[lo]) lo = i;
     if (pressures[i] > pressures[hi]) hi = i;
   }
-  const double b_guess =
-      -(pressures[hi] - pressures[lo]) / std::log(volumes[hi] / volumes[lo]);
+  const double b_guess = -(pressures[hi] - pressures[lo]) / std::log(volumes[hi] / volumes[lo]);
   if (!(b_guess > 0.0)) throw Error("EOS fit: volume does not decrease with pressure");
   const double v_scale = volumes[lo];
   const double p_scale = b_guess;
@@ -82,8 +81,8 @@ EosFit fit_birch_murnaghan(const std::vector<double>& volumes,
   fit.b0_prime = q[2];
   double ss = 0.0;
   for (size_t i = 0; i < n; ++i) {
-    const double r = birch_murnaghan_pressure(volumes[i], fit.v0, fit.b0, fit.b0_prime) -
-                     pressures[i];
+    const double r =
+        birch_murnaghan_pressure(volumes[i], fit.v0, fit.b0, fit.b0_prime) - pressures[i];
     ss += r * r;
   }
   fit.rms_residual = std::sqrt(ss / static_cast<double>(n));

@@ -10,8 +10,8 @@ namespace {
 void write_fixed(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                  const void* local, hsize_t n_local, hsize_t offset, hsize_t n_total, hid_t dxpl) {
   h5::Handle fspace(H5Screate_simple(1, &n_total, nullptr), H5Sclose);
-  h5::Handle ds(H5Dcreate2(parent, name.c_str(), file_type, fspace.id(), H5P_DEFAULT,
-                           H5P_DEFAULT, H5P_DEFAULT),
+  h5::Handle ds(H5Dcreate2(parent, name.c_str(), file_type, fspace.id(), H5P_DEFAULT, H5P_DEFAULT,
+                           H5P_DEFAULT),
                 H5Dclose);
   h5::Handle mspace(H5Screate_simple(1, &n_local, nullptr), H5Sclose);
   H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, &offset, nullptr, &n_local, nullptr);
@@ -68,9 +68,9 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
   {
     const hsize_t one = 1;
     h5::Handle space(H5Screate_simple(1, &one, nullptr), H5Sclose);
-    h5::Handle attr(H5Acreate2(box.id(), "dimension", H5T_NATIVE_INT, space.id(), H5P_DEFAULT,
-                               H5P_DEFAULT),
-                    H5Aclose);
+    h5::Handle attr(
+        H5Acreate2(box.id(), "dimension", H5T_NATIVE_INT, space.id(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose);
     H5Awrite(attr.id(), H5T_NATIVE_INT, &dim);
   }
   std::vector<std::string> boundary;
@@ -83,12 +83,12 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
   std::vector<long long> id_ll(ids.begin(), ids.end());
   write_fixed(all.id(), "id", H5T_NATIVE_LLONG, H5T_STD_I64LE, id_ll.data(), n_local_, offset_,
               n_total_, dxpl_.id());
-  write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, species.data(), n_local_,
-              offset_, n_total_, dxpl_.id());
+  write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, species.data(), n_local_, offset_,
+              n_total_, dxpl_.id());
 }
 
-H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name,
-                                               int rank_dims, hsize_t n, const std::string& unit) {
+H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name, int rank_dims,
+                                               hsize_t n, const std::string& unit) {
   TimeSeries ts;
   ts.group = h5::require_group(parent, name);
   auto make = [&](const char* dname, int nd, const hsize_t* dims, const hsize_t* chunk,

@@ -71,9 +71,9 @@ void write_attribute(hid_t obj, const std::string& name, const std::string& valu
 void write_attribute(hid_t obj, const std::string& name, double value) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attr(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space.id(), H5P_DEFAULT,
-                         H5P_DEFAULT),
-              H5Aclose);
+  Handle attr(
+      H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
   H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value);
 }
 
@@ -81,8 +81,7 @@ void write_attribute(hid_t obj, const std::string& name, const std::vector<int>&
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   const hsize_t n = value.size();
   Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
-  Handle attr(H5Acreate2(obj, name.c_str(), H5T_NATIVE_INT, space.id(), H5P_DEFAULT,
-                         H5P_DEFAULT),
+  Handle attr(H5Acreate2(obj, name.c_str(), H5T_NATIVE_INT, space.id(), H5P_DEFAULT, H5P_DEFAULT),
               H5Aclose);
   H5Awrite(attr.id(), H5T_NATIVE_INT, value.data());
 }

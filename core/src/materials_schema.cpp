@@ -15,8 +15,7 @@ Param materials_schema() {
           .above(0),
   };
   Param material = Param::map(
-      "material",
-      {Param::choice("kind", {"eam_alloy", "eam_fs"}, "Interaction model").require()},
+      "material", {Param::choice("kind", {"eam_alloy", "eam_fs"}, "Interaction model").require()},
       "One material");
   material.discriminated_by("kind")
       .variant("eam_alloy", eam_fields, "Embedded-atom method, LAMMPS pair_style eam/alloy")

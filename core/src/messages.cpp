@@ -62,8 +62,8 @@ StageResults decode_results(Decoder& d) {
 template <typename T>
 Message decode_as(Decoder& d) {
   T m = T::decode(d);
-  if (!d.at_end()) throw Error(fmt::format("protocol: trailing bytes after a {} message",
-                                           type_name(T::kType)));
+  if (!d.at_end())
+    throw Error(fmt::format("protocol: trailing bytes after a {} message", type_name(T::kType)));
   return m;
 }
 
@@ -181,7 +181,9 @@ Fatal Fatal::decode(Decoder& d) {
   return m;
 }
 
-void Shutdown::encode(Encoder& e) const { e.put(reason); }
+void Shutdown::encode(Encoder& e) const {
+  e.put(reason);
+}
 Shutdown Shutdown::decode(Decoder& d) {
   Shutdown m;
   d.get(m.reason);
@@ -190,13 +192,20 @@ Shutdown Shutdown::decode(Decoder& d) {
 
 std::string_view type_name(MessageType t) {
   switch (t) {
-    case MessageType::kHello: return "Hello";
-    case MessageType::kWelcome: return "Welcome";
-    case MessageType::kRunStage: return "RunStage";
-    case MessageType::kProgress: return "Progress";
-    case MessageType::kStageDone: return "StageDone";
-    case MessageType::kFatal: return "Fatal";
-    case MessageType::kShutdown: return "Shutdown";
+    case MessageType::kHello:
+      return "Hello";
+    case MessageType::kWelcome:
+      return "Welcome";
+    case MessageType::kRunStage:
+      return "RunStage";
+    case MessageType::kProgress:
+      return "Progress";
+    case MessageType::kStageDone:
+      return "StageDone";
+    case MessageType::kFatal:
+      return "Fatal";
+    case MessageType::kShutdown:
+      return "Shutdown";
   }
   return "unknown";
 }
@@ -219,19 +228,27 @@ Message unpack(const std::byte* data, size_t size) {
   if (d.get<uint32_t>() != kMagic) throw Error("protocol: message without the PBMS magic number");
   const auto version = d.get<uint16_t>();
   if (version != kProtocolVersion) {
-    throw Error(fmt::format("protocol: peer speaks version {}, this program speaks version {}; "
-                            "rebuild all PBMS programs from one source tree",
-                            version, kProtocolVersion));
+    throw Error(
+        fmt::format("protocol: peer speaks version {}, this program speaks version {}; "
+                    "rebuild all PBMS programs from one source tree",
+                    version, kProtocolVersion));
   }
   const auto type = static_cast<MessageType>(d.get<uint16_t>());
   switch (type) {
-    case MessageType::kHello: return decode_as<Hello>(d);
-    case MessageType::kWelcome: return decode_as<Welcome>(d);
-    case MessageType::kRunStage: return decode_as<RunStage>(d);
-    case MessageType::kProgress: return decode_as<Progress>(d);
-    case MessageType::kStageDone: return decode_as<StageDone>(d);
-    case MessageType::kFatal: return decode_as<Fatal>(d);
-    case MessageType::kShutdown: return decode_as<Shutdown>(d);
+    case MessageType::kHello:
+      return decode_as<Hello>(d);
+    case MessageType::kWelcome:
+      return decode_as<Welcome>(d);
+    case MessageType::kRunStage:
+      return decode_as<RunStage>(d);
+    case MessageType::kProgress:
+      return decode_as<Progress>(d);
+    case MessageType::kStageDone:
+      return decode_as<StageDone>(d);
+    case MessageType::kFatal:
+      return decode_as<Fatal>(d);
+    case MessageType::kShutdown:
+      return decode_as<Shutdown>(d);
   }
   throw Error(fmt::format("protocol: unknown message type {}", static_cast<int>(type)));
 }

@@ -27,8 +27,7 @@ MpmdWorld MpmdWorld::join(Role role) {
 
   const int mine[2] = {w.appnum_, static_cast<int>(role)};
   std::vector<int> all(2 * static_cast<size_t>(world_size));
-  check(MPI_Allgather(mine, 2, MPI_INT, all.data(), 2, MPI_INT, MPI_COMM_WORLD),
-        "MPI_Allgather");
+  check(MPI_Allgather(mine, 2, MPI_INT, all.data(), 2, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
   std::map<int, App> apps;
   for (int r = 0; r < world_size; ++r) {
     const int a = all[2 * static_cast<size_t>(r)];
@@ -46,9 +45,10 @@ MpmdWorld MpmdWorld::join(Role role) {
   const auto n_couplers = std::count_if(w.apps_.begin(), w.apps_.end(),
                                         [](const App& a) { return a.role == Role::kCoupler; });
   if (n_couplers != 1) {
-    throw Error(fmt::format("this MPI job has {} coupler programs; it needs exactly one "
-                            "(start jobs with ./pbms run)",
-                            n_couplers));
+    throw Error(
+        fmt::format("this MPI job has {} coupler programs; it needs exactly one "
+                    "(start jobs with ./pbms run)",
+                    n_couplers));
   }
   return w;
 }
@@ -81,8 +81,8 @@ Comm MpmdWorld::connect(const App& remote) const {
 
 void Channel::send(const protocol::Message& m, int remote_rank) const {
   const auto bytes = protocol::pack(m);
-  check(MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, remote_rank,
-                 kMessageTag, comm_.get()),
+  check(MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, remote_rank, kMessageTag,
+                 comm_.get()),
         "MPI_Send");
 }
 

@@ -12,20 +12,30 @@ struct KindName {
   std::string_view name;
 };
 constexpr KindName kKindNames[] = {
-    {ParamKind::kInteger, "integer"},   {ParamKind::kReal, "real"},
-    {ParamKind::kBoolean, "boolean"},   {ParamKind::kString, "string"},
-    {ParamKind::kName, "name"},         {ParamKind::kFile, "file"},
-    {ParamKind::kPath, "path"},         {ParamKind::kChoice, "choice"},
-    {ParamKind::kRealList, "real list"}, {ParamKind::kIntList, "integer list"},
-    {ParamKind::kMap, "map"},           {ParamKind::kMapOf, "named map"},
+    {ParamKind::kInteger, "integer"},
+    {ParamKind::kReal, "real"},
+    {ParamKind::kBoolean, "boolean"},
+    {ParamKind::kString, "string"},
+    {ParamKind::kName, "name"},
+    {ParamKind::kFile, "file"},
+    {ParamKind::kPath, "path"},
+    {ParamKind::kChoice, "choice"},
+    {ParamKind::kRealList, "real list"},
+    {ParamKind::kIntList, "integer list"},
+    {ParamKind::kMap, "map"},
+    {ParamKind::kMapOf, "named map"},
     {ParamKind::kListOf, "list"},
 };
 
 constexpr std::pair<units::Dimension, std::string_view> kDimNames[] = {
-    {units::Dimension::kNone, "none"},          {units::Dimension::kPressure, "pressure"},
-    {units::Dimension::kLength, "length"},      {units::Dimension::kTime, "time"},
-    {units::Dimension::kTemperature, "temperature"}, {units::Dimension::kVelocity, "velocity"},
-    {units::Dimension::kEnergy, "energy"},      {units::Dimension::kMass, "mass"},
+    {units::Dimension::kNone, "none"},
+    {units::Dimension::kPressure, "pressure"},
+    {units::Dimension::kLength, "length"},
+    {units::Dimension::kTime, "time"},
+    {units::Dimension::kTemperature, "temperature"},
+    {units::Dimension::kVelocity, "velocity"},
+    {units::Dimension::kEnergy, "energy"},
+    {units::Dimension::kMass, "mass"},
     {units::Dimension::kRate, "rate"},
 };
 
@@ -46,17 +56,29 @@ std::string_view kind_name(ParamKind k) {
   return "?";
 }
 
-Param Param::integer(std::string n, std::string d) { return make(std::move(n), ParamKind::kInteger, std::move(d)); }
+Param Param::integer(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kInteger, std::move(d));
+}
 Param Param::real(std::string n, units::Dimension dim, std::string d) {
   Param p = make(std::move(n), ParamKind::kReal, std::move(d));
   p.dimension = dim;
   return p;
 }
-Param Param::boolean(std::string n, std::string d) { return make(std::move(n), ParamKind::kBoolean, std::move(d)); }
-Param Param::string(std::string n, std::string d) { return make(std::move(n), ParamKind::kString, std::move(d)); }
-Param Param::identifier(std::string n, std::string d) { return make(std::move(n), ParamKind::kName, std::move(d)); }
-Param Param::file(std::string n, std::string d) { return make(std::move(n), ParamKind::kFile, std::move(d)); }
-Param Param::path(std::string n, std::string d) { return make(std::move(n), ParamKind::kPath, std::move(d)); }
+Param Param::boolean(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kBoolean, std::move(d));
+}
+Param Param::string(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kString, std::move(d));
+}
+Param Param::identifier(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kName, std::move(d));
+}
+Param Param::file(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kFile, std::move(d));
+}
+Param Param::path(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kPath, std::move(d));
+}
 Param Param::choice(std::string n, std::vector<std::string> c, std::string d) {
   Param p = make(std::move(n), ParamKind::kChoice, std::move(d));
   p.choices = std::move(c);
@@ -67,7 +89,9 @@ Param Param::real_list(std::string n, units::Dimension dim, std::string d) {
   p.dimension = dim;
   return p;
 }
-Param Param::int_list(std::string n, std::string d) { return make(std::move(n), ParamKind::kIntList, std::move(d)); }
+Param Param::int_list(std::string n, std::string d) {
+  return make(std::move(n), ParamKind::kIntList, std::move(d));
+}
 Param Param::map(std::string n, std::vector<Param> f, std::string d) {
   Param p = make(std::move(n), ParamKind::kMap, std::move(d));
   p.fields = std::move(f);

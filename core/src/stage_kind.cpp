@@ -46,7 +46,7 @@ StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
     OutputSpec o;
     o.name = on["name"].as<std::string>();
     o.shape = on["shape"].as<std::string>() == "scalar" ? OutputSpec::Shape::kScalar
-                                                         : OutputSpec::Shape::kTable;
+                                                        : OutputSpec::Shape::kTable;
     o.unit = on["unit"].as<std::string>("");
     o.doc = on["doc"].as<std::string>("");
     s.outputs.push_back(o);

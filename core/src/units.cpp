@@ -20,18 +20,18 @@ struct UnitEntry {
 
 // Factors to metal units. 1 m/s = 1e10 Å / 1e12 ps = 0.01 Å/ps.
 constexpr UnitEntry kUnits[] = {
-    {Dimension::kPressure, "bar", 1.0},      {Dimension::kPressure, "kbar", 1.0e3},
-    {Dimension::kPressure, "GPa", 1.0e4},    {Dimension::kPressure, "MPa", 10.0},
-    {Dimension::kPressure, "Pa", 1.0e-5},    {Dimension::kPressure, "atm", 1.01325},
-    {Dimension::kLength, "Å", 1.0},          {Dimension::kLength, "A", 1.0},
-    {Dimension::kLength, "angstrom", 1.0},   {Dimension::kLength, "nm", 10.0},
-    {Dimension::kTime, "ps", 1.0},           {Dimension::kTime, "fs", 1.0e-3},
-    {Dimension::kTime, "ns", 1.0e3},         {Dimension::kTemperature, "K", 1.0},
-    {Dimension::kVelocity, "Å/ps", 1.0},     {Dimension::kVelocity, "A/ps", 1.0},
-    {Dimension::kVelocity, "m/s", 0.01},     {Dimension::kVelocity, "km/s", 10.0},
-    {Dimension::kEnergy, "eV", 1.0},         {Dimension::kEnergy, "meV", 1.0e-3},
-    {Dimension::kMass, "g/mol", 1.0},        {Dimension::kRate, "1/ps", 1.0},
-    {Dimension::kRate, "%/ps", 0.01},        {Dimension::kRate, "1/ns", 1.0e-3},
+    {Dimension::kPressure, "bar", 1.0},    {Dimension::kPressure, "kbar", 1.0e3},
+    {Dimension::kPressure, "GPa", 1.0e4},  {Dimension::kPressure, "MPa", 10.0},
+    {Dimension::kPressure, "Pa", 1.0e-5},  {Dimension::kPressure, "atm", 1.01325},
+    {Dimension::kLength, "Å", 1.0},        {Dimension::kLength, "A", 1.0},
+    {Dimension::kLength, "angstrom", 1.0}, {Dimension::kLength, "nm", 10.0},
+    {Dimension::kTime, "ps", 1.0},         {Dimension::kTime, "fs", 1.0e-3},
+    {Dimension::kTime, "ns", 1.0e3},       {Dimension::kTemperature, "K", 1.0},
+    {Dimension::kVelocity, "Å/ps", 1.0},   {Dimension::kVelocity, "A/ps", 1.0},
+    {Dimension::kVelocity, "m/s", 0.01},   {Dimension::kVelocity, "km/s", 10.0},
+    {Dimension::kEnergy, "eV", 1.0},       {Dimension::kEnergy, "meV", 1.0e-3},
+    {Dimension::kMass, "g/mol", 1.0},      {Dimension::kRate, "1/ps", 1.0},
+    {Dimension::kRate, "%/ps", 0.01},      {Dimension::kRate, "1/ns", 1.0e-3},
 };
 
 std::string_view trim(std::string_view s) {
@@ -44,15 +44,24 @@ std::string_view trim(std::string_view s) {
 
 std::string_view canonical_symbol(Dimension d) {
   switch (d) {
-    case Dimension::kNone: return "1";
-    case Dimension::kPressure: return "bar";
-    case Dimension::kLength: return "Å";
-    case Dimension::kTime: return "ps";
-    case Dimension::kTemperature: return "K";
-    case Dimension::kVelocity: return "Å/ps";
-    case Dimension::kEnergy: return "eV";
-    case Dimension::kMass: return "g/mol";
-    case Dimension::kRate: return "1/ps";
+    case Dimension::kNone:
+      return "1";
+    case Dimension::kPressure:
+      return "bar";
+    case Dimension::kLength:
+      return "Å";
+    case Dimension::kTime:
+      return "ps";
+    case Dimension::kTemperature:
+      return "K";
+    case Dimension::kVelocity:
+      return "Å/ps";
+    case Dimension::kEnergy:
+      return "eV";
+    case Dimension::kMass:
+      return "g/mol";
+    case Dimension::kRate:
+      return "1/ps";
   }
   return "?";
 }

@@ -123,8 +123,7 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
       try {
         v = units::parse_quantity(s, p.dimension);
       } catch (const Error& e) {
-        error(node, path,
-              fmt::format("expected {}: {}", p.type_text(), e.what()));
+        error(node, path, fmt::format("expected {}: {}", p.type_text(), e.what()));
         return {};
       }
       if (!check_range(p, v, node, path)) return {};
@@ -185,8 +184,8 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
   return {};
 }
 
-YAML::Node Validator::check_fields(const std::vector<const Param*>& fields,
-                                   const YAML::Node& node, const std::string& path) {
+YAML::Node Validator::check_fields(const std::vector<const Param*>& fields, const YAML::Node& node,
+                                   const std::string& path) {
   YAML::Node out(YAML::NodeType::Map);
   std::vector<std::string> names;
   for (const auto* f : fields) names.push_back(f->name);
@@ -209,8 +208,8 @@ YAML::Node Validator::check_fields(const std::vector<const Param*>& fields,
       continue;
     }
     if (child.IsNull()) {
-      error(child, child_path, fmt::format("'{}' has no value: expected {}", f->name,
-                                           f->type_text()));
+      error(child, child_path,
+            fmt::format("'{}' has no value: expected {}", f->name, f->type_text()));
       continue;
     }
     YAML::Node resolved = check(*f, child, child_path);
@@ -278,12 +277,12 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
         return {};
       }
       if (p.min_length && node.size() < *p.min_length) {
-        error(node, path, fmt::format("needs at least {} entries, has {}", *p.min_length,
-                                      node.size()));
+        error(node, path,
+              fmt::format("needs at least {} entries, has {}", *p.min_length, node.size()));
       }
       if (p.max_length && node.size() > *p.max_length) {
-        error(node, path, fmt::format("takes at most {} entries, has {}", *p.max_length,
-                                      node.size()));
+        error(node, path,
+              fmt::format("takes at most {} entries, has {}", *p.max_length, node.size()));
       }
       Param element;
       if (p.kind == ParamKind::kListOf) {

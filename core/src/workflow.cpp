@@ -40,10 +40,14 @@ bool check_text(const std::string& text, Validator& v) {
     if (c < 0x20 && c != '\n' && c != '\r' && c != '\t') {
       bad = true;
     } else if (c >= 0x80) {
-      if ((c & 0xE0) == 0xC0) len = 2;
-      else if ((c & 0xF0) == 0xE0) len = 3;
-      else if ((c & 0xF8) == 0xF0) len = 4;
-      else bad = true;
+      if ((c & 0xE0) == 0xC0)
+        len = 2;
+      else if ((c & 0xF0) == 0xE0)
+        len = 3;
+      else if ((c & 0xF8) == 0xF0)
+        len = 4;
+      else
+        bad = true;
       for (size_t k = 1; !bad && k < len; ++k) {
         bad = i + k >= text.size() || (static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80;
       }
@@ -94,11 +98,11 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
     launch_fields.push_back(
         Param::integer(d.short_name, fmt::format("MPI ranks for {}", d.program)).def(1).above(0));
   }
-  Param stage = Param::map(
-      "stage",
-      {Param::identifier("name", "Unique stage name; names its results").require(),
-       Param::string("kind", "Stage kind, declared by one of the drivers").require()},
-      "One stage");
+  Param stage =
+      Param::map("stage",
+                 {Param::identifier("name", "Unique stage name; names its results").require(),
+                  Param::string("kind", "Stage kind, declared by one of the drivers").require()},
+                 "One stage");
   stage.discriminated_by("kind");
   for (const auto& d : drivers) {
     for (const auto& s : d.stage_kinds) stage.variant(s.kind, s.params, s.doc);
@@ -106,14 +110,14 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
   return Param::map(
       "workflow",
       {
-          Param::map("run",
-                     {Param::identifier("name", "Run name; results go to <output>/<name>/")
-                          .require(),
-                      Param::path("output", "Directory that holds run directories").def("runs"),
-                      Param::integer("seed", "Seed of every random number in the run")
-                          .def(12345)
-                          .at_least(0)},
-                     "Run identity")
+          Param::map(
+              "run",
+              {Param::identifier("name", "Run name; results go to <output>/<name>/").require(),
+               Param::path("output", "Directory that holds run directories").def("runs"),
+               Param::integer("seed", "Seed of every random number in the run")
+                   .def(12345)
+                   .at_least(0)},
+              "Run identity")
               .require(),
           Param::map("launch", launch_fields, "MPI ranks per driver program")
               .def(YAML::Node(YAML::NodeType::Map)),
@@ -207,18 +211,18 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     const int idx = stage_index_of(r.key_path);
     if (r.type == Reference::Target::kMaterial) {
       if (!materials.IsMap() || !materials[r.target]) {
-        v.error_at(m, r.key_path, fmt::format("material '{}' is not defined under 'materials'",
-                                              r.target));
+        v.error_at(m, r.key_path,
+                   fmt::format("material '{}' is not defined under 'materials'", r.target));
         continue;
       }
       const YAML::Node mk = materials[r.target]["kind"];
       if (idx >= 0 && stage_specs[idx] && mk && mk.IsScalar()) {
         const auto& ok = stage_specs[idx]->material_kinds;
         if (std::find(ok.begin(), ok.end(), mk.Scalar()) == ok.end()) {
-          v.error_at(m, r.key_path,
-                     fmt::format("material '{}' is of kind '{}', but stage kind '{}' takes {}",
-                                 r.target, mk.Scalar(), stage_specs[idx]->kind,
-                                 fmt::join(ok, ", ")));
+          v.error_at(
+              m, r.key_path,
+              fmt::format("material '{}' is of kind '{}', but stage kind '{}' takes {}", r.target,
+                          mk.Scalar(), stage_specs[idx]->kind, fmt::join(ok, ", ")));
         }
       }
       continue;
@@ -233,8 +237,8 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     const std::string oname = r.target.substr(dot + 1);
     const auto it = std::find(stage_names.begin(), stage_names.end(), sname);
     if (it == stage_names.end()) {
-      v.error_at(m, r.key_path, fmt::format("no stage is named '{}'{}", sname,
-                                            suggest(sname, stage_names)));
+      v.error_at(m, r.key_path,
+                 fmt::format("no stage is named '{}'{}", sname, suggest(sname, stage_names)));
       continue;
     }
     const int target_idx = static_cast<int>(it - stage_names.begin());

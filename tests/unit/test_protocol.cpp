@@ -19,7 +19,8 @@ T round_trip(const T& m) {
 }  // namespace
 
 TEST(Protocol, Hello) {
-  Hello h{"md_driver", "md", kProtocolVersion, 4, {"md_isotherm", "md_elastic"}, {"lammps=20220106"}};
+  Hello h{"md_driver",        "md", kProtocolVersion, 4, {"md_isotherm", "md_elastic"},
+          {"lammps=20220106"}};
   const auto b = round_trip(h);
   EXPECT_EQ(b.program, "md_driver");
   EXPECT_EQ(b.short_name, "md");
@@ -43,8 +44,13 @@ TEST(Protocol, Welcome) {
 }
 
 TEST(Protocol, RunStage) {
-  RunStage r{3, "isotherm", "md_isotherm", "temperature: 298\n", "cu: {kind: eam_alloy}",
-             "/tmp/run", 0xfedcba9876543210ULL};
+  RunStage r{3,
+             "isotherm",
+             "md_isotherm",
+             "temperature: 298\n",
+             "cu: {kind: eam_alloy}",
+             "/tmp/run",
+             0xfedcba9876543210ULL};
   const auto b = round_trip(r);
   EXPECT_EQ(b.index, 3);
   EXPECT_EQ(b.name, r.name);
@@ -97,7 +103,9 @@ TEST(Protocol, Fatal) {
   EXPECT_EQ(b.message, f.message);
 }
 
-TEST(Protocol, Shutdown) { EXPECT_EQ(round_trip(Shutdown{"done"}).reason, "done"); }
+TEST(Protocol, Shutdown) {
+  EXPECT_EQ(round_trip(Shutdown{"done"}).reason, "done");
+}
 
 TEST(Protocol, RefusesOtherVersionsAndDamage) {
   auto bytes = pack(Shutdown{"x"});

@@ -101,7 +101,8 @@ TEST(Workflow, CollectsEveryErrorWithLocation) {
 }
 
 TEST(Workflow, RankOverride) {
-  const auto f = write("ok2.yaml", std::string(kHeader) + "stages: [{name: e, kind: md_elastic, material: cu}]\n");
+  const auto f = write(
+      "ok2.yaml", std::string(kHeader) + "stages: [{name: e, kind: md_elastic, material: cu}]\n");
   auto r = load_workflow(f, md_only());
   ASSERT_TRUE(r.workflow);
   EXPECT_EQ(apply_rank_override(*r.workflow, md_only(), "md=4"), "");

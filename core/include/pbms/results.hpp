@@ -29,15 +29,14 @@ struct Column {
 struct StageResults {
   std::vector<ScalarResult> scalars;
   std::vector<Column> columns;
-  std::vector<std::string> files;  // written by the driver, relative to the run dir
+  std::vector<std::string> files;                 // written by the driver, relative to the run dir
   std::map<std::string, std::string> attributes;  // free text: "lammps_version", ...
 
   void add_scalar(std::string key, double value, std::string unit,
                   double std_error = std::nan("")) {
     scalars.push_back({std::move(key), value, std::move(unit), std_error});
   }
-  void add_column(std::string table, std::string name, std::string unit,
-                  std::vector<double> data) {
+  void add_column(std::string table, std::string name, std::string unit, std::vector<double> data) {
     columns.push_back({std::move(table), std::move(name), std::move(unit), std::move(data)});
   }
   [[nodiscard]] std::optional<double> scalar(const std::string& key) const {

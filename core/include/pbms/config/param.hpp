@@ -16,7 +16,7 @@ namespace pbms::config {
 
 enum class ParamKind {
   kInteger,
-  kReal,      // number, or "value unit" when a dimension is set
+  kReal,  // number, or "value unit" when a dimension is set
   kBoolean,
   kString,
   kName,      // identifier: [A-Za-z_][A-Za-z0-9_.-]*
@@ -67,17 +67,47 @@ struct Param {
   static Param map_of(std::string name, Param element, std::string doc);
   static Param list_of(std::string name, Param element, std::string doc);
 
-  Param& require() { required = true; return *this; }
+  Param& require() {
+    required = true;
+    return *this;
+  }
   template <typename T>
-  Param& def(const T& v) { default_value = YAML::Node(v); return *this; }
-  Param& at_least(double v) { min = v; min_exclusive = false; return *this; }
-  Param& above(double v) { min = v; min_exclusive = true; return *this; }
-  Param& at_most(double v) { max = v; return *this; }
-  Param& length(size_t lo, size_t hi) { min_length = lo; max_length = hi; return *this; }
-  Param& referable() { allow_reference = true; return *this; }
-  Param& material() { names_material = true; return *this; }
+  Param& def(const T& v) {
+    default_value = YAML::Node(v);
+    return *this;
+  }
+  Param& at_least(double v) {
+    min = v;
+    min_exclusive = false;
+    return *this;
+  }
+  Param& above(double v) {
+    min = v;
+    min_exclusive = true;
+    return *this;
+  }
+  Param& at_most(double v) {
+    max = v;
+    return *this;
+  }
+  Param& length(size_t lo, size_t hi) {
+    min_length = lo;
+    max_length = hi;
+    return *this;
+  }
+  Param& referable() {
+    allow_reference = true;
+    return *this;
+  }
+  Param& material() {
+    names_material = true;
+    return *this;
+  }
   Param& variant(const std::string& value, std::vector<Param> extra, std::string doc);
-  Param& discriminated_by(std::string key) { discriminator = std::move(key); return *this; }
+  Param& discriminated_by(std::string key) {
+    discriminator = std::move(key);
+    return *this;
+  }
 
   [[nodiscard]] const Param* field(std::string_view key) const;
   // All keys valid in a map node whose discriminator has value `variant`.

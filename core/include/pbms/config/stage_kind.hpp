@@ -32,7 +32,7 @@ struct StageKindSpec {
 
 // What `<driver> --describe` prints and the handshake carries.
 struct DriverDescription {
-  std::string program;  // "md_driver"
+  std::string program;     // "md_driver"
   std::string short_name;  // "md": the key in `launch:` and `--ranks md=2`
   int protocol_version = 0;
   std::vector<StageKindSpec> stage_kinds;

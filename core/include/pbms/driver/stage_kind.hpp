@@ -89,8 +89,8 @@ class StageRegistry {
 };
 
 struct DriverInfo {
-  std::string program;     // "md_driver"
-  std::string short_name;  // "md"
+  std::string program;                                        // "md_driver"
+  std::string short_name;                                     // "md"
   std::vector<std::pair<std::string, std::string>> software;  // name -> version
 };
 

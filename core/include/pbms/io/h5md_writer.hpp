@@ -32,7 +32,8 @@ class H5mdWriter {
   // `positions` (and `velocities` when enabled) hold 3 values per local
   // particle in the same order as the ids given to the constructor.
   void write_frame(int64_t step, double time_ps, const std::array<double, 3>& box_edges,
-                   const std::vector<double>& positions, const std::vector<double>& velocities = {});
+                   const std::vector<double>& positions,
+                   const std::vector<double>& velocities = {});
   [[nodiscard]] int64_t frames() const { return frames_; }
 
  private:

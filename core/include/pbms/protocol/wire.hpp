@@ -17,7 +17,7 @@ namespace pbms::protocol {
 class Encoder {
  public:
   template <typename T>
-    requires std::is_arithmetic_v<T>
+  requires std::is_arithmetic_v<T>
   void put(T v) {
     const auto* p = reinterpret_cast<const std::byte*>(&v);
     bytes_.insert(bytes_.end(), p, p + sizeof(T));
@@ -49,8 +49,7 @@ class Decoder {
   Decoder(const std::byte* data, size_t size) : data_(data), size_(size) {}
 
   template <typename T>
-    requires std::is_arithmetic_v<T>
-  T get() {
+  requires std::is_arithmetic_v<T> T get() {
     need(sizeof(T));
     T v;
     std::memcpy(&v, data_ + pos_, sizeof(T));
