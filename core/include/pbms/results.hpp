@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "pbms/protocol/wire.hpp"
+
 namespace pbms {
 
 struct ScalarResult {
@@ -17,6 +19,7 @@ struct ScalarResult {
   double value = 0.0;
   std::string unit;
   double std_error = std::nan("");  // NaN when not estimated
+  PBMS_FIELDS(key, value, unit, std_error)
 };
 
 struct Column {
@@ -24,6 +27,7 @@ struct Column {
   std::string name;   // "pressure"
   std::string unit;
   std::vector<double> data;
+  PBMS_FIELDS(table, name, unit, data)
 };
 
 struct StageResults {
@@ -31,6 +35,7 @@ struct StageResults {
   std::vector<Column> columns;
   std::vector<std::string> files;                 // written by the driver, relative to the run dir
   std::map<std::string, std::string> attributes;  // free text: "lammps_version", ...
+  PBMS_FIELDS(scalars, columns, files, attributes)
 
   void add_scalar(std::string key, double value, std::string unit,
                   double std_error = std::nan("")) {

@@ -34,14 +34,14 @@ struct Hello {
   int32_t ranks = 0;
   std::vector<std::string> capabilities;  // stage kinds
   std::vector<std::string> software;      // "name=version"
-  void encode(Encoder& e) const;
-  static Hello decode(Decoder& d);
+  PBMS_FIELDS(program, short_name, protocol_version, ranks, capabilities, software)
 };
 
 struct Peer {
   std::string program;
   int32_t app = 0;  // MPI_APPNUM of the peer's processes
   int32_t ranks = 0;
+  PBMS_FIELDS(program, app, ranks)
 };
 
 struct Welcome {
@@ -49,8 +49,7 @@ struct Welcome {
   bool accepted = false;
   std::string reason;
   std::vector<Peer> peers;
-  void encode(Encoder& e) const;
-  static Welcome decode(Decoder& d);
+  PBMS_FIELDS(accepted, reason, peers)
 };
 
 struct RunStage {
@@ -62,8 +61,7 @@ struct RunStage {
   std::string materials_yaml;  // the workflow's resolved materials block
   std::string run_dir;
   uint64_t seed = 0;
-  void encode(Encoder& e) const;
-  static RunStage decode(Decoder& d);
+  PBMS_FIELDS(index, name, kind, params_yaml, materials_yaml, run_dir, seed)
 };
 
 struct Progress {
@@ -73,8 +71,7 @@ struct Progress {
   int64_t total_steps = 0;
   double sim_time_ps = 0.0;
   std::string phase;  // "p = 5 GPa, production"
-  void encode(Encoder& e) const;
-  static Progress decode(Decoder& d);
+  PBMS_FIELDS(stage, step, total_steps, sim_time_ps, phase)
 };
 
 struct StageDone {
@@ -82,8 +79,7 @@ struct StageDone {
   std::string stage;
   double wall_s = 0.0;
   StageResults results;
-  void encode(Encoder& e) const;
-  static StageDone decode(Decoder& d);
+  PBMS_FIELDS(stage, wall_s, results)
 };
 
 struct Fatal {
@@ -93,15 +89,13 @@ struct Fatal {
   std::string stage;  // empty outside a stage
   int64_t step = -1;  // -1 when not inside a time loop
   std::string message;
-  void encode(Encoder& e) const;
-  static Fatal decode(Decoder& d);
+  PBMS_FIELDS(program, rank, stage, step, message)
 };
 
 struct Shutdown {
   static constexpr auto kType = MessageType::kShutdown;
   std::string reason;
-  void encode(Encoder& e) const;
-  static Shutdown decode(Decoder& d);
+  PBMS_FIELDS(reason)
 };
 
 using Message = std::variant<Hello, Welcome, RunStage, Progress, StageDone, Fatal, Shutdown>;

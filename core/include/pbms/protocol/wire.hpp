@@ -1,46 +1,69 @@
-// Byte-level encoding of protocol messages: little-endian fixed-width
-// integers, IEEE doubles, length-prefixed strings and vectors. Both ends run
-// on the same cluster, but a fixed layout keeps the format independent of
-// compiler padding and lets tests pin it down.
+// Byte-level encoding of protocol messages: fixed-width integers and IEEE
+// doubles in host order (all programs of a job run one build on one
+// cluster), length-prefixed strings, vectors and maps, and any struct that
+// lists its members with PBMS_FIELDS. A message type is therefore just a
+// struct; its wire layout is its field list, in order.
 #pragma once
 
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
 #include "pbms/error.hpp"
 
+// Declares the members that make up a struct's wire form, in order.
+#define PBMS_FIELDS(...)                                 \
+  auto fields() { return std::tie(__VA_ARGS__); }        \
+  auto fields() const { return std::tie(__VA_ARGS__); }
+
 namespace pbms::protocol {
+
+template <typename T>
+struct IsVector : std::false_type {};
+template <typename T>
+struct IsVector<std::vector<T>> : std::true_type {};
+template <typename T>
+struct IsMap : std::false_type {};
+template <typename K, typename V>
+struct IsMap<std::map<K, V>> : std::true_type {};
 
 class Encoder {
  public:
   template <typename T>
-  requires std::is_arithmetic_v<T>
-  void put(T v) {
-    const auto* p = reinterpret_cast<const std::byte*>(&v);
-    bytes_.insert(bytes_.end(), p, p + sizeof(T));
-  }
-  void put(const std::string& s) {
-    put<uint64_t>(s.size());
-    const auto* p = reinterpret_cast<const std::byte*>(s.data());
-    bytes_.insert(bytes_.end(), p, p + s.size());
-  }
-  template <typename T>
-  void put(const std::vector<T>& v) {
-    put<uint64_t>(v.size());
+  void put(const T& v) {
     if constexpr (std::is_arithmetic_v<T>) {
-      const auto* p = reinterpret_cast<const std::byte*>(v.data());
-      bytes_.insert(bytes_.end(), p, p + v.size() * sizeof(T));
+      raw(&v, sizeof(T));
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      put<uint64_t>(v.size());
+      raw(v.data(), v.size());
+    } else if constexpr (IsVector<T>::value) {
+      put<uint64_t>(v.size());
+      if constexpr (std::is_arithmetic_v<typename T::value_type>) {
+        raw(v.data(), v.size() * sizeof(typename T::value_type));
+      } else {
+        for (const auto& x : v) put(x);
+      }
+    } else if constexpr (IsMap<T>::value) {
+      put<uint64_t>(v.size());
+      for (const auto& [k, x] : v) {
+        put(k);
+        put(x);
+      }
     } else {
-      for (const auto& x : v) put(x);
+      std::apply([this](const auto&... f) { (put(f), ...); }, v.fields());
     }
   }
   [[nodiscard]] std::vector<std::byte> take() { return std::move(bytes_); }
-  [[nodiscard]] const std::vector<std::byte>& bytes() const { return bytes_; }
 
  private:
+  void raw(const void* p, size_t n) {
+    const auto* b = static_cast<const std::byte*>(p);
+    bytes_.insert(bytes_.end(), b, b + n);
+  }
   std::vector<std::byte> bytes_;
 };
 
@@ -49,53 +72,54 @@ class Decoder {
   Decoder(const std::byte* data, size_t size) : data_(data), size_(size) {}
 
   template <typename T>
-  requires std::is_arithmetic_v<T> T get() {
-    need(sizeof(T));
-    T v;
-    std::memcpy(&v, data_ + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return v;
-  }
-  template <typename T>
   void get(T& out) {
     if constexpr (std::is_arithmetic_v<T>) {
-      out = get<T>();
+      raw(&out, sizeof(T));
     } else if constexpr (std::is_same_v<T, std::string>) {
-      const auto n = length();
-      need(n);
+      const auto n = length(1);
       out.assign(reinterpret_cast<const char*>(data_ + pos_), n);
       pos_ += n;
+    } else if constexpr (IsVector<T>::value) {
+      using V = typename T::value_type;
+      if constexpr (std::is_arithmetic_v<V>) {
+        out.resize(length(sizeof(V)));
+        raw(out.data(), out.size() * sizeof(V));
+      } else {
+        out.clear();
+        const auto n = length(1);
+        for (uint64_t i = 0; i < n; ++i) get(out.emplace_back());
+      }
+    } else if constexpr (IsMap<T>::value) {
+      out.clear();
+      const auto n = length(1);
+      for (uint64_t i = 0; i < n; ++i) {
+        typename T::key_type k;
+        get(k);
+        get(out[k]);
+      }
     } else {
-      get_vector(out);
+      std::apply([this](auto&... f) { (get(f), ...); }, out.fields());
     }
+  }
+  template <typename T>
+  T get() {
+    T v{};
+    get(v);
+    return v;
   }
   [[nodiscard]] bool at_end() const { return pos_ == size_; }
 
  private:
-  template <typename T>
-  void get_vector(std::vector<T>& out) {
-    const auto n = length();
-    if constexpr (std::is_arithmetic_v<T>) {
-      need(n * sizeof(T));
-      out.resize(n);
-      std::memcpy(out.data(), data_ + pos_, n * sizeof(T));
-      pos_ += n * sizeof(T);
-    } else {
-      out.clear();
-      for (uint64_t i = 0; i < n; ++i) {
-        T x;
-        get(x);
-        out.push_back(std::move(x));
-      }
-    }
-  }
-  uint64_t length() {
+  // A count, checked against the bytes left (each element is >= `unit`).
+  uint64_t length(size_t unit) {
     const auto n = get<uint64_t>();
-    if (n > size_) throw Error("protocol: corrupt message (length field exceeds message size)");
+    if (n > (size_ - pos_) / unit) throw Error("protocol: corrupt message (bad length field)");
     return n;
   }
-  void need(size_t n) const {
-    if (pos_ + n > size_) throw Error("protocol: truncated message");
+  void raw(void* out, size_t n) {
+    if (n > size_ - pos_) throw Error("protocol: truncated message");
+    std::memcpy(out, data_ + pos_, n);
+    pos_ += n;
   }
   const std::byte* data_;
   size_t size_;
