@@ -279,8 +279,7 @@ void StageContext::progress(int64_t step, int64_t total_steps, double sim_time_p
                             const std::string& phase) {
   set_current_step(step);
   if (rank() != 0) return;
-  static const auto t0 = Clock::now();
-  const double now = seconds_since(t0);
+  const double now = seconds_since(created_);
   const int64_t one_percent = std::max<int64_t>(1, total_steps / 100);
   const bool due = step >= total_steps || last_report_step_ < 0 ||
                    step - last_report_step_ >= one_percent || now - last_report_s_ >= 0.5;

@@ -20,8 +20,10 @@ std::string ProgressMeter::format(int64_t step, int64_t total, double sim_time_p
   const double rate = elapsed > 0 ? static_cast<double>(step) / elapsed : 0.0;
   const double eta = rate > 0 ? static_cast<double>(total - step) / rate : NAN;
   const double pct = total > 0 ? 100.0 * static_cast<double>(step) / static_cast<double>(total) : 0;
-  std::string line = fmt::format("[{}] step {}/{} ({:3.0f}%) | {:.2f} ps | {:.0f} steps/s | ETA {}",
-                                 label_, step, total, pct, sim_time_ps, rate, format_duration(eta));
+  // The first report has no elapsed time to measure a rate against.
+  const std::string speed = rate > 0 ? fmt::format("{:.0f} steps/s", rate) : "- steps/s";
+  std::string line = fmt::format("[{}] step {}/{} ({:3.0f}%) | {:.2f} ps | {} | ETA {}", label_,
+                                 step, total, pct, sim_time_ps, speed, format_duration(eta));
   if (!phase.empty()) line += " | " + phase;
   return line;
 }

@@ -6,6 +6,7 @@
 
 #include <mpi.h>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -61,6 +62,7 @@ class StageContext {
   std::filesystem::path run_dir_;
   uint64_t seed_;
   StageResults results_;
+  std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   double last_report_s_ = -1.0;
   int64_t last_report_step_ = -1;
 };
