@@ -33,8 +33,14 @@ config::StageKindSpec ElasticStage::spec() {
           .def(std::vector<int>{4, 4, 4})
           .length(3, 3)
           .at_least(2),
-      Param::real("strain", Dimension::kNone, "Magnitude of the applied strains")
+      Param::real("strain", Dimension::kNone, "Magnitude of the applied strains at 0 K")
           .def(1.0e-3)
+          .above(0)
+          .at_most(0.05),
+      Param::real("strain_at_temperature", Dimension::kNone,
+                  "Magnitude of the strains at `temperature`: larger than at 0 K, since the "
+                  "statistical error of the stress average is divided by it")
+          .def(5.0e-3)
           .above(0)
           .at_most(0.05),
       Param::real("temperature", Dimension::kTemperature,
@@ -132,7 +138,8 @@ void ElasticStage::run(StageContext& ctx) {
   const YAML::Node& p = ctx.params();
   const MdMaterial mat = material_of(ctx);
   const auto cells = cells_of(p["cells"]);
-  const double e = p["strain"].as<double>();
+  const double e_cold = p["strain"].as<double>();
+  const double e_hot = p["strain_at_temperature"].as<double>();
   const double temperature = p["temperature"].as<double>();
   const double a_t =
       p["lattice_constant"] ? p["lattice_constant"].as<double>() : mat.lattice_constant;
@@ -145,6 +152,7 @@ void ElasticStage::run(StageContext& ctx) {
   const int total = temperature > 0 ? 8 : 4;
   int done = 0;
   auto measure = [&](double t, double a) {
+    const double e = t > 0 ? e_hot : e_cold;
     Stress s[2][2];  // [mode][sign]
     for (int m = 0; m < 2; ++m) {
       for (int sign = 0; sign < 2; ++sign) {

@@ -57,10 +57,12 @@ config::StageKindSpec TensionStage::spec() {
   };
   s.outputs = {
       {"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
-       "Slope of stress vs strain up to fit_max_strain"},
+       "Slope of the gauge's virial stress vs strain up to fit_max_strain"},
+      {"youngs_modulus_grip_force", OutputSpec::Shape::kScalar, "GPa",
+       "The same slope from the grip forces over the initial cross-section"},
       {"ultimate_stress", OutputSpec::Shape::kScalar, "GPa", "Largest stress reached"},
       {"strain_at_ultimate", OutputSpec::Shape::kScalar, "1", "Strain at the largest stress"},
-      {"stress_strain", OutputSpec::Shape::kTable, "", "Strain, stress and temperature"},
+      {"stress_strain", OutputSpec::Shape::kTable, "", "Strain, virial stress, grip-force stress and temperature"},
   };
   return s;
 }
@@ -143,49 +145,67 @@ void TensionStage::run(StageContext& ctx) {
   // is launched from the grips.
   lmp.command(fmt::format("velocity wire ramp vx {} {} x {:.10g} {:.10g} sum yes units box",
                           -grip_speed, grip_speed, xlo + grip_len, xhi - grip_len));
-  // Stress from the forces the wire exerts on the grips (read before
-  // setforce zeroes them), averaged over each sampling window.
+  // Two measures of the axial stress, each averaged over a sampling window:
+  // the virial stress of the gauge atoms (as the seed computes it), and the
+  // force the wire exerts on the grips (read before setforce zeroes it) over
+  // the initial cross-section. The first is far less noisy; both must agree.
+  const double to_gpa = 1.0 / units::kBarPerGPa;
+  lmp.command("compute atom_stress wire stress/atom NULL");
+  lmp.command("compute wire_sxx wire reduce sum c_atom_stress[1]");
+  lmp.command(fmt::format("variable gauge_length equal {:.12g}+{:.12g}*step*dt", gauge,
+                          2.0 * grip_speed));
+  lmp.command(fmt::format("variable virial_stress equal c_wire_sxx/({:.12g}*v_gauge_length)*{}",
+                          area, to_gpa));
   lmp.command(
-      fmt::format("variable stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
-                  area, units::kBarPerEvPerA3 / units::kBarPerGPa));
-  lmp.command(fmt::format("fix stress_avg all ave/time 1 {0} {0} v_stress", every));
+      fmt::format("variable grip_stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
+                  area, units::kBarPerEvPerA3 * to_gpa));
+  lmp.command(fmt::format("fix stress_avg all ave/time 1 {0} {0} v_virial_stress v_grip_stress",
+                          every));
   // Strain at the middle of the window the stress was averaged over.
   lmp.command(
       fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1), rate));
-  lmp.command("variable stress_avg equal f_stress_avg");
+  lmp.command("variable virial_avg equal f_stress_avg[1]");
+  lmp.command("variable grip_avg equal f_stress_avg[2]");
   lmp.command("variable wire_temp equal c_wire_temp");
-  lmp.command(fmt::format("fix samples all vector {} v_strain v_stress_avg v_wire_temp", every));
+  lmp.command(fmt::format("fix samples all vector {} v_strain v_virial_avg v_grip_avg v_wire_temp",
+                          every));
   lmp.run(n_load, chunk, [&](int64_t done) {
     traj.maybe_write(n_equil + done, (n_equil + done) * dt);
     ctx.progress(n_equil + done, total, (n_equil + done) * dt,
                  fmt::format("strain {:.4f}", done * dt * rate));
   });
-  auto rows = lmp.fix_array("samples", 3);
+  auto rows = lmp.fix_array("samples", 4);
   // Row 0 is step 0, before any window was averaged.
   if (!rows.empty()) rows.erase(rows.begin());
-  const auto strain = column(rows, 0), stress = column(rows, 1), temp = column(rows, 2);
+  const auto strain = column(rows, 0), stress = column(rows, 1), grip_stress = column(rows, 2),
+             temp = column(rows, 3);
 
-  std::vector<double> fx, fy;
-  for (size_t i = 0; i < strain.size(); ++i) {
-    if (strain[i] <= fit_max) {
-      fx.push_back(strain[i]);
-      fy.push_back(stress[i]);
+  auto elastic_fit = [&](const std::vector<double>& y) {
+    std::vector<double> fx, fy;
+    for (size_t i = 0; i < strain.size(); ++i) {
+      if (strain[i] <= fit_max) {
+        fx.push_back(strain[i]);
+        fy.push_back(y[i]);
+      }
     }
-  }
-  if (fx.size() < 3) {
-    throw Error(
-        fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
-                    "more often or raise fit_max_strain",
-                    ctx.stage(), fx.size(), fit_max));
-  }
-  const auto fit = analysis::fit_line(fx, fy);
+    if (fx.size() < 3) {
+      throw Error(fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
+                              "more often or raise fit_max_strain",
+                              ctx.stage(), fx.size(), fit_max));
+    }
+    return analysis::fit_line(fx, fy);
+  };
+  const auto fit = elastic_fit(stress);
+  const auto grip_fit = elastic_fit(grip_stress);
   const auto peak = std::max_element(stress.begin(), stress.end()) - stress.begin();
   auto& r = ctx.results();
   r.add_scalar("youngs_modulus", fit.slope, "GPa", fit.slope_error);
+  r.add_scalar("youngs_modulus_grip_force", grip_fit.slope, "GPa", grip_fit.slope_error);
   r.add_scalar("ultimate_stress", stress[static_cast<size_t>(peak)], "GPa");
   r.add_scalar("strain_at_ultimate", strain[static_cast<size_t>(peak)], "1");
   r.add_column("stress_strain", "strain", "1", strain);
   r.add_column("stress_strain", "stress", "GPa", stress);
+  r.add_column("stress_strain", "grip_stress", "GPa", grip_stress);
   r.add_column("stress_strain", "temperature", "K", temp);
   r.attributes["fit_max_strain"] = fmt::format("{}", fit_max);
   r.attributes["fit_intercept_gpa"] = fmt::format("{}", fit.intercept);

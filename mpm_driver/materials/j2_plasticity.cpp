@@ -1,0 +1,78 @@
+#include "j2_plasticity.hpp"
+
+#include <cmath>
+
+#include "jaumann_rotation.hpp"
+
+namespace pbms::mpm {
+
+namespace {
+
+const ParameterRange kYoungsModulusRange = ParameterRange::positive();
+const ParameterRange kPoissonRatioRange = ParameterRange::open(-1.0, 0.5);
+const ParameterRange kYieldStressRange = ParameterRange::positive();
+// Softening (H < 0) makes the local problem ill-posed without regularisation.
+const ParameterRange kHardeningModulusRange = ParameterRange::non_negative();
+
+}  // namespace
+
+J2Plasticity::J2Plasticity(double youngs_modulus, double poisson_ratio, double yield_stress,
+                           double hardening_modulus)
+    : yield_stress_(yield_stress), hardening_modulus_(hardening_modulus) {
+  check_parameter(kStyle, "youngs_modulus", youngs_modulus, kYoungsModulusRange);
+  check_parameter(kStyle, "poisson_ratio", poisson_ratio, kPoissonRatioRange);
+  check_parameter(kStyle, "yield_stress", yield_stress, kYieldStressRange);
+  check_parameter(kStyle, "hardening_modulus", hardening_modulus, kHardeningModulusRange);
+  elasticity_ =
+      IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(youngs_modulus, poisson_ratio);
+}
+
+std::unique_ptr<Material> J2Plasticity::create(const MaterialParameters& params) {
+  ParameterReader reader(kStyle, params);
+  const double e = reader.required("youngs_modulus", kYoungsModulusRange);
+  const double nu = reader.required("poisson_ratio", kPoissonRatioRange);
+  const double sy = reader.required("yield_stress", kYieldStressRange);
+  const double h = reader.optional("hardening_modulus", 0.0, kHardeningModulusRange);
+  reader.reject_unknown();
+  return std::make_unique<J2Plasticity>(e, nu, sy, h);
+}
+
+void J2Plasticity::update(const Mat3& velocity_gradient, double dt,
+                          MaterialPointState& state) const {
+  const SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
+  const SymmetricTensor trial =
+      rotated(state.stress, hughes_winget_rotation(velocity_gradient, dt)) +
+      elasticity_.stress_for(strain_increment);
+
+  const SymmetricTensor s_trial = deviator(trial);
+  const double q_trial = std::sqrt(1.5 * double_contraction(s_trial, s_trial));
+  const double overstress = q_trial - flow_stress(state.plastic_strain);
+  if (overstress <= 0.0) {
+    state.stress = trial;
+    return;
+  }
+
+  // With linear hardening the return along the trial deviator is closed form:
+  // q = q_trial - 3 mu dgamma must equal flow_stress(eps_p + dgamma).
+  const double mu = elasticity_.shear_modulus;
+  const double dgamma = overstress / (3.0 * mu + hardening_modulus_);
+  const double shrink = 1.0 - 3.0 * mu * dgamma / q_trial;
+  const double mean = trial.trace() / 3.0;
+  state.stress = SymmetricTensor::isotropic(mean) + shrink * s_trial;
+  state.plastic_strain += dgamma;
+}
+
+double J2Plasticity::wave_speed(const MaterialPointState& state) const {
+  return std::sqrt(elasticity_.p_wave_modulus() / state.density);
+}
+
+double J2Plasticity::stored_energy_density(const MaterialPointState& state) const {
+  return elasticity_.strain_energy_density(state.stress);
+}
+
+double J2Plasticity::dissipated_energy_density(const MaterialPointState& state) const {
+  const double ep = state.plastic_strain;
+  return yield_stress_ * ep + 0.5 * hardening_modulus_ * ep * ep;
+}
+
+}  // namespace pbms::mpm

@@ -1,0 +1,47 @@
+#include "linear_elastic.hpp"
+
+#include <cmath>
+
+#include "jaumann_rotation.hpp"
+
+namespace pbms::mpm {
+
+namespace {
+
+const ParameterRange kYoungsModulusRange = ParameterRange::positive();
+// nu = 0.5 would make lambda infinite; nu <= -1 a negative shear modulus.
+const ParameterRange kPoissonRatioRange = ParameterRange::open(-1.0, 0.5);
+
+}  // namespace
+
+LinearElastic::LinearElastic(double youngs_modulus, double poisson_ratio) {
+  check_parameter(kStyle, "youngs_modulus", youngs_modulus, kYoungsModulusRange);
+  check_parameter(kStyle, "poisson_ratio", poisson_ratio, kPoissonRatioRange);
+  elasticity_ =
+      IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(youngs_modulus, poisson_ratio);
+}
+
+std::unique_ptr<Material> LinearElastic::create(const MaterialParameters& params) {
+  ParameterReader reader(kStyle, params);
+  const double e = reader.required("youngs_modulus", kYoungsModulusRange);
+  const double nu = reader.required("poisson_ratio", kPoissonRatioRange);
+  reader.reject_unknown();
+  return std::make_unique<LinearElastic>(e, nu);
+}
+
+void LinearElastic::update(const Mat3& velocity_gradient, double dt,
+                           MaterialPointState& state) const {
+  const SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
+  state.stress = rotated(state.stress, hughes_winget_rotation(velocity_gradient, dt)) +
+                 elasticity_.stress_for(strain_increment);
+}
+
+double LinearElastic::wave_speed(const MaterialPointState& state) const {
+  return std::sqrt(elasticity_.p_wave_modulus() / state.density);
+}
+
+double LinearElastic::stored_energy_density(const MaterialPointState& state) const {
+  return elasticity_.strain_energy_density(state.stress);
+}
+
+}  // namespace pbms::mpm

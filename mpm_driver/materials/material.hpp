@@ -1,0 +1,52 @@
+// The constitutive model of an MPM material point, as the explicit solver sees
+// it: a stress update over one step from the velocity gradient, plus what the
+// solver needs for its time step and energy balance. Pure kernels: no MPI, no
+// I/O, no configuration. Units are whatever the caller uses consistently; with
+// stresses in bar and densities in g/mol/Å^3 the caller must convert moduli to
+// (g/mol)/(Å ps^2) for wave_speed to come out in Å/ps.
+#pragma once
+
+#include <string_view>
+
+#include "material_point_state.hpp"
+#include "symmetric_tensor.hpp"
+
+namespace pbms::mpm {
+
+class Material {
+ public:
+  virtual ~Material() = default;
+
+  // The registry name, e.g. "linear_elastic".
+  [[nodiscard]] virtual std::string_view style() const = 0;
+
+  // Advances stress and history over one step of length dt, during which the
+  // velocity gradient is velocity_gradient(i, j) = dv_i/dx_j (the MPM sum of
+  // v_I (x) grad N_I; not symmetric). The same kernel serves update-stress-
+  // first and update-stress-last: the solver decides when to call it. On entry
+  // state.density already holds the end-of-step density (see
+  // MaterialPointState); on exit state.stress is the end-of-step stress.
+  virtual void update(const Mat3& velocity_gradient, double dt,
+                      MaterialPointState& state) const = 0;
+
+  // Fastest signal speed in the material at this state, for the CFL bound
+  // dt < h / (c + |v|).
+  [[nodiscard]] virtual double wave_speed(const MaterialPointState& state) const = 0;
+
+  // Recoverable energy per unit current volume: elastic strain energy for
+  // solids, internal energy for the gas. Kinetic + stored + dissipated is
+  // conserved by a consistent solver.
+  [[nodiscard]] virtual double stored_energy_density(const MaterialPointState& state) const = 0;
+
+  // Energy per unit volume turned into heat so far (plastic work).
+  [[nodiscard]] virtual double dissipated_energy_density(const MaterialPointState&) const {
+    return 0.0;
+  }
+
+  // A point at rest under hydrostatic pressure (tension negative) at the given
+  // density. Throws pbms::Error if density is not positive or the pressure is
+  // one the material cannot hold.
+  [[nodiscard]] virtual MaterialPointState initial_state(double density, double pressure) const;
+};
+
+}  // namespace pbms::mpm
