@@ -41,12 +41,13 @@
 // the nodal central difference (v_j+1 - v_j-1) / (2h) interpolated linearly
 // to the point (one-sided at the ends), and the dual nodal force is
 // A (S_i+1 / V_i+1 - S_i-1 / V_i-1) / 2, each S_j / V_j being a nodal average
-// stress; at an end node b it is -A (S_b-1 / V_b-1 + S_b / V_b) / 2. That is the
-// seed's Appendix 2 program: its nodal array of (1 - alpha) sigma_p V_p N_jp /
-// le, doubled on the two end nodes (V = le/2 there), enters the force as half
-// the difference of the two neighbours; its alpha = 1 is plain MPM, and its
-// alternative alphas are functions of the local coordinate xi that vanish at
-// both cell ends, such as 4 xi (1 - xi) (see face_vanishing_blend).
+// stress; at an end node b it is -A (S_b-1 / V_b-1 + S_b / V_b) / 2. The
+// seed's Appendix 2 program computes this force: its nodal array of
+// (1 - alpha) sigma_p V_p N_jp / le, doubled on the two end nodes (V = le/2
+// there), enters the force as half the difference of the two neighbours
+// (A = 1 there); its alpha = 1 is plain MPM, and its alternative alphas are
+// functions of the local coordinate xi that vanish at both cell ends, such as
+// 4 xi (1 - xi) (see face_vanishing_blend).
 // Two deliberate differences from that program: its strain rate takes the
 // central difference of the node nearest the point instead of interpolating
 // (not the transpose of its force operator), and its force loop skips the
