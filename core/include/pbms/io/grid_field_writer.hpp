@@ -1,0 +1,72 @@
+// Nodal fields of the MPM background grid as a time series ParaView opens:
+// `<base>.h5` holds the data, `<base>.xdmf` (XDMF 3) describes it as a
+// temporal collection of 3DCoRectMesh grids. The HDF5 file is the record;
+// the XDMF file is derived from it and is rewritten whole after each frame,
+// by rank 0, through a temporary file and a rename, so a viewer polling it
+// never sees a half-written file nor a frame whose data is not yet flushed.
+//
+// All ranks of `comm` call every method. Each rank passes the nodes it owns;
+// the owned boxes must tile the grid's nodes exactly. Argument errors are
+// agreed on collectively, so that every rank throws the same pbms::Error
+// instead of one rank leaving the others stuck in a collective HDF5 call.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "pbms/grid/regular_grid.hpp"
+#include "pbms/io/hdf5.hpp"
+
+namespace pbms {
+
+class GridFieldWriter {
+ public:
+  struct Field {
+    // The HDF5 dataset name and the array name shown in ParaView; letters,
+    // digits, '_', '-' and '.', not starting with a digit, '-' or '.'.
+    std::string name;
+    std::string unit;
+    int components = 1;  // 1 (scalar) or 3 (vector)
+    // components * owned.count() values over the owned box: i fastest,
+    // components interleaved. Unused (may be null) when the box is empty.
+    const double* data = nullptr;
+  };
+
+  // Truncates `<base>.h5` and removes a stale `<base>.xdmf`. `comm` must
+  // outlive the writer.
+  GridFieldWriter(MPI_Comm comm, const std::string& base, const grid::RegularGrid& grid,
+                  const grid::NodeBox& owned);
+
+  // Writes /step_<step>/<name> for each field, of global shape (nz, ny, nx)
+  // or (nz, ny, nx, 3): z slowest, as XDMF wants. Steps must be unique;
+  // the fields may differ from frame to frame.
+  void write_frame(std::int64_t step, double time, const std::vector<Field>& fields);
+
+  [[nodiscard]] std::int64_t frames() const { return frames_; }
+  [[nodiscard]] const std::string& h5_path() const { return h5_path_; }
+  [[nodiscard]] const std::string& xdmf_path() const { return xdmf_path_; }
+
+ private:
+  [[nodiscard]] std::string frame_xml(std::int64_t step, double time,
+                                      const std::vector<Field>& fields) const;
+  void write_xdmf() const;
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  grid::RegularGrid grid_;
+  grid::NodeBox owned_;
+  std::string h5_path_, xdmf_path_, h5_name_;
+  h5::Handle file_;
+  h5::Handle dxpl_;
+  std::set<std::int64_t> steps_;
+  // Rank 0 only: one <Grid> element per frame, kept so that rewriting the
+  // XDMF file costs no HDF5 reads.
+  std::vector<std::string> frame_xml_;
+  std::int64_t frames_ = 0;
+};
+
+}  // namespace pbms
