@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string_view>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -92,8 +93,8 @@ void require_tiling(MPI_Comm comm, const grid::RegularGrid& grid, const grid::No
   for (size_t a = 0; a < boxes.size(); ++a) {
     for (size_t b = a + 1; b < boxes.size(); ++b) {
       if (!boxes[a].second.intersected(boxes[b].second).empty()) {
-        throw Error(fmt::format("{}: ranks {} and {} both own nodes of {}", context,
-                                boxes[a].first, boxes[b].first,
+        throw Error(fmt::format("{}: ranks {} and {} both own nodes of {}", context, boxes[a].first,
+                                boxes[b].first,
                                 describe(boxes[a].second.intersected(boxes[b].second))));
       }
     }
@@ -120,12 +121,23 @@ std::string xml_escape(std::string_view s) {
   out.reserve(s.size());
   for (const char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -147,8 +159,7 @@ void write_doubles_attribute(hid_t obj, const std::string& name, const std::vect
 void write_int64_attribute(hid_t obj, const std::string& name, std::int64_t value) {
   h5::Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   h5::Handle attr(
-      H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
-      H5Aclose);
+      H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   H5Awrite(attr.id(), H5T_NATIVE_INT64, &value);
 }
 
@@ -170,7 +181,8 @@ GridFieldWriter::GridFieldWriter(MPI_Comm comm, const std::string& base,
   } else if (h5_name_.find_first_of(": \t\n") != std::string::npos) {
     // The XDMF reference "file.h5:/path" is split at the colon and taken
     // apart at white space.
-    error = fmt::format("grid output: file name '{}' must not contain ':' or white space", h5_name_);
+    error =
+        fmt::format("grid output: file name '{}' must not contain ':' or white space", h5_name_);
   } else if (!owned.empty() && owned.intersected(grid.node_box()) != owned) {
     error = fmt::format("{}: owned node box {} reaches outside the grid's nodes {}", h5_path_,
                         describe(owned), describe(grid.node_box()));
@@ -182,8 +194,9 @@ GridFieldWriter::GridFieldWriter(MPI_Comm comm, const std::string& base,
   for (int d = 0; d < 3; ++d) {
     same.add(grid.origin()[d]).add(static_cast<std::uint64_t>(grid.cells()[d]));
   }
-  require_same_everywhere(comm, same.value(),
-                          fmt::format("{}: ranks disagree on the output path or the grid", h5_path_));
+  require_same_everywhere(
+      comm, same.value(),
+      fmt::format("{}: ranks disagree on the output path or the grid", h5_path_));
   require_tiling(comm, grid, owned, h5_path_);
 
   file_ = h5::create_truncate(h5_path_, comm);
@@ -217,8 +230,11 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
                                   const std::vector<Field>& fields) {
   std::string error;
   std::set<std::string> names;
-  if (!std::isfinite(time)) error = fmt::format("time {} is not a finite number", time);
-  else if (steps_.count(step) > 0) error = "the step was already written";
+  if (!std::isfinite(time)) {
+    error = fmt::format("time {} is not a finite number", time);
+  } else if (steps_.count(step) > 0) {
+    error = "the step was already written";
+  }
   for (const auto& f : fields) {
     if (!error.empty()) break;
     if (!valid_field_name(f.name)) {
@@ -229,8 +245,8 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
     } else if (!names.insert(f.name).second) {
       error = fmt::format("field '{}' is given twice", f.name);
     } else if (f.components != 1 && f.components != 3) {
-      error = fmt::format("field '{}' has {} components; 1 or 3 are supported", f.name,
-                          f.components);
+      error =
+          fmt::format("field '{}' has {} components; 1 or 3 are supported", f.name, f.components);
     } else if (f.data == nullptr && !owned_.empty()) {
       error = fmt::format("field '{}' has no data", f.name);
     }
@@ -253,6 +269,9 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
   const auto e = owned_.extent();
   const auto& lo = owned_.lo;
   auto group = h5::require_group(file_.id(), step_group(step));
+  // Taken even if a write below fails: the group exists now, and a retry of
+  // the step should be refused with a message, not fail in HDF5.
+  steps_.insert(step);
   write_int64_attribute(group.id(), "step", step);
   h5::write_attribute(group.id(), "time", time);
   h5::Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
@@ -296,7 +315,6 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
   }
   throw_if_any(comm_, failed);
 
-  steps_.insert(step);
   ++frames_;
   if (rank_ == 0) frame_xml_.push_back(frame_xml(step, time, fields));
   std::string xdmf_error;

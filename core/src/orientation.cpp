@@ -1,7 +1,9 @@
 #include "pbms/geometry/orientation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -43,8 +45,8 @@ Orientation::Orientation(const MillerDirection& x, const MillerDirection& y,
   std::array<Wide, 3> w{widened(x), widened(y), widened(z)};
   for (int d = 0; d < 3; ++d) {
     if (dot(w[d], w[d]) == 0) {
-      throw Error(fmt::format("crystal orientation: the direction along {} is [0 0 0]",
-                              kAxisNames[d]));
+      throw Error(
+          fmt::format("crystal orientation: the direction along {} is [0 0 0]", kAxisNames[d]));
     }
   }
   for (int a = 0; a < 3; ++a) {

@@ -76,8 +76,8 @@ CylinderRegion::CylinderRegion(Axis axis, const std::array<double, 2>& centre, d
     throw Error(fmt::format("cylinder radius must be a positive number, got {}", radius));
   }
   if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-    throw Error(fmt::format("cylinder needs finite lo < hi along its axis, got lo {} and hi {}", lo,
-                            hi));
+    throw Error(
+        fmt::format("cylinder needs finite lo < hi along its axis, got lo {} and hi {}", lo, hi));
   }
 }
 

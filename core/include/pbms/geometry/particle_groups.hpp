@@ -4,6 +4,7 @@
 // that set operations are linear merges and output order is reproducible.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
