@@ -16,9 +16,13 @@
 #include "pbms/error.hpp"
 
 // Declares the members that make up a struct's wire form, in order.
-#define PBMS_FIELDS(...)                                 \
-  auto fields() { return std::tie(__VA_ARGS__); }        \
-  auto fields() const { return std::tie(__VA_ARGS__); }
+#define PBMS_FIELDS(...)          \
+  auto fields() {                 \
+    return std::tie(__VA_ARGS__); \
+  }                               \
+  auto fields() const {           \
+    return std::tie(__VA_ARGS__); \
+  }
 
 namespace pbms::protocol {
 
