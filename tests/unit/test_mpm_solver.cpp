@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "materials/material_registry.hpp"
+#include "pbms/error.hpp"
 #include "pbms/grid/shape_function.hpp"
 #include "solver/mpm_solver.hpp"
 
@@ -127,4 +128,31 @@ TEST(MpmSolver, VibratingBarPeriodConverges) {
   EXPECT_LT(e32, 0.01);
   EXPECT_LE(e16, 0.5 * e8 * 1.05);
   EXPECT_LE(e32, 0.5 * e16 * 1.05);
+}
+
+// A point carried out of the grid stops the step with its id and position.
+TEST(MpmSolver, PointLeavingTheGridIsNamed) {
+  grid::RegularGrid g({0, 0, 0}, 1.0, {4, 1, 1});
+  MpmSolver solver(g, grid::ShapeFunctionRegistry::create("linear"), elastic(100.0, 0.0), {});
+  MaterialPoints pts;
+  fill(pts, g, {3, 0, 0}, {4, 1, 1}, 1, 1.0);
+  pts.id[0] = 4711;
+  pts.v[0] = {10.0, 0.0, 0.0};
+  try {
+    for (int n = 0; n < 10; ++n) solver.step(pts, {}, 0.01);
+    FAIL() << "the point should have left the grid";
+  } catch (const pbms::Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("material point 4711 left the grid at (4."), std::string::npos) << msg;
+  }
+}
+
+// The stable step is h / (c + |v|) with c the P-wave speed.
+TEST(MpmSolver, StableTimeStepIsTheCflBound) {
+  grid::RegularGrid g({0, 0, 0}, 0.5, {4, 4, 4});
+  MpmSolver solver(g, grid::ShapeFunctionRegistry::create("linear"), elastic(100.0, 0.0), {});
+  MaterialPoints pts;
+  fill(pts, g, {1, 1, 1}, {2, 2, 2}, 1, 4.0);
+  pts.v[0] = {3.0, 0.0, 0.0};
+  EXPECT_NEAR(solver.stable_time_step(pts), 0.5 / (5.0 + 3.0), 1e-12);
 }
