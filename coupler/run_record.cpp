@@ -47,7 +47,7 @@ std::string now_iso8601() {
   return buf;
 }
 
-RunRecord::RunRecord(const config::Workflow& wf, std::vector<ProgramLayout> layout,
+RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout>& layout,
                      const std::string& command_line)
     : dir_(std::filesystem::absolute(wf.run_dir())) {
   // A rerun replaces the previous run of the same name, as LAMMPS replaces

@@ -26,7 +26,7 @@ class RunRecord {
  public:
   // Clears and creates the run directory; writes config.yaml and a manifest
   // with status "running".
-  RunRecord(const config::Workflow& wf, std::vector<ProgramLayout> layout,
+  RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout>& layout,
             const std::string& command_line);
 
   [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }

@@ -240,13 +240,13 @@ class DriverRuntime {
 // ---------------------------------------------------------------- context
 
 StageContext::StageContext(DriverRuntime& runtime, std::string stage, std::string kind,
-                           YAML::Node params, YAML::Node materials, std::filesystem::path run_dir,
-                           uint64_t seed)
+                           const YAML::Node& params, const YAML::Node& materials,
+                           std::filesystem::path run_dir, uint64_t seed)
     : runtime_(runtime),
       stage_(std::move(stage)),
       kind_(std::move(kind)),
-      params_(std::move(params)),
-      materials_(std::move(materials)),
+      params_(params),
+      materials_(materials),
       run_dir_(std::move(run_dir)),
       seed_(seed) {}
 

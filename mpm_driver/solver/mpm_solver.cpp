@@ -31,10 +31,7 @@ UnitSystem UnitSystem::metal() {
 
 MpmSolver::MpmSolver(grid::RegularGrid grid, std::unique_ptr<grid::ShapeFunction> shape,
                      std::vector<std::unique_ptr<Material>> materials, SolverOptions options)
-    : grid_(std::move(grid)),
-      shape_(std::move(shape)),
-      materials_(std::move(materials)),
-      opt_(options) {
+    : grid_(grid), shape_(std::move(shape)), materials_(std::move(materials)), opt_(options) {
   const auto n = static_cast<size_t>(grid_.node_count());
   mass_.assign(n, 0.0);
   momentum_.assign(n, {0.0, 0.0, 0.0});

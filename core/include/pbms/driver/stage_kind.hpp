@@ -26,8 +26,9 @@ class DriverRuntime;  // internal
 // What a running stage sees of the world.
 class StageContext {
  public:
-  StageContext(DriverRuntime& runtime, std::string stage, std::string kind, YAML::Node params,
-               YAML::Node materials, std::filesystem::path run_dir, uint64_t seed);
+  StageContext(DriverRuntime& runtime, std::string stage, std::string kind,
+               const YAML::Node& params, const YAML::Node& materials, std::filesystem::path run_dir,
+               uint64_t seed);
 
   [[nodiscard]] const std::string& stage() const { return stage_; }
   [[nodiscard]] const std::string& kind() const { return kind_; }
