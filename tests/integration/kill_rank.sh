@@ -2,6 +2,8 @@ source "$(dirname "$0")/lib.sh"
 # SIGKILL one md_driver rank mid-stage: the job must end within 10 s with a
 # non-zero exit, a message naming md_driver, the rank and the stage, a failed
 # manifest, and the finished stage's results intact.
+# A previous run's manifest would satisfy the wait below before this run starts.
+rm -rf runs
 "$PBMS" run "$(dirname "$0")/configs/kill_target.yaml" > out.txt 2> err.txt &
 pid=$!
 run=runs/kill_target
@@ -13,6 +15,9 @@ for _ in $(seq 1 600); do
 done
 victim=""
 for p in $(pgrep -f "build/bin/md_driver"); do
+  # Only md_driver processes of this job (mpirun's command line matches too).
+  [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" == */md_driver ]] || continue
+  [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] || continue
   if tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_LOCAL_RANK=2\|OMPI_COMM_WORLD_RANK=2"; then victim=$p; fi
 done
 [ -n "$victim" ] || fail "no md_driver process with world rank 2 found"
