@@ -156,3 +156,49 @@ TEST(MpmSolver, StableTimeStepIsTheCflBound) {
   pts.v[0] = {3.0, 0.0, 0.0};
   EXPECT_NEAR(solver.stable_time_step(pts), 0.5 / (5.0 + 3.0), 1e-12);
 }
+
+// One cell of J2 material pulled along x with the lateral faces held
+// (uniaxial strain): elastic until the von Mises stress reaches sigma_y,
+// then on the yield surface (perfect plasticity), as the kernel alone does.
+TEST(MpmSolver, J2SingleCellYieldsAtSigmaY) {
+  const double E = 1000.0, nu = 0.3, sy = 2.0, rate = 0.5, dt = 1e-4;
+  grid::RegularGrid g({0, 0, 0}, 1.0, {1, 1, 1});
+  std::vector<std::unique_ptr<Material>> m;
+  m.push_back(MaterialRegistry::create("j2_plasticity", {{"youngs_modulus", E},
+                                                         {"poisson_ratio", nu},
+                                                         {"yield_stress", sy},
+                                                         {"hardening_modulus", 0.0}}));
+  SolverOptions opt;
+  opt.flip = 0.0;  // PIC: the points follow the imposed nodal field exactly
+  MpmSolver solver(g, grid::ShapeFunctionRegistry::create("linear"), std::move(m), opt);
+  MaterialPoints pts;
+  fill(pts, g, {0, 0, 0}, {1, 1, 1}, 2, 1.0);
+  BoundaryConditions bc;
+  bc.nodes.push_back({g.node_box(), {false, true, true}, {0, 0, 0}});
+  bc.nodes.push_back({{{0, 0, 0}, {1, 2, 2}}, {true, false, false}, {0, 0, 0}});
+  bc.nodes.push_back({{{1, 0, 0}, {2, 2, 2}}, {true, false, false}, {rate, 0, 0}});
+  const double mu = E / (2 * (1 + nu));
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+  // Uniaxial strain: sigma_xx - sigma_yy = 2 mu eps, so yield at eps_y = sy / (2 mu).
+  const double eps_y = sy / (2 * mu);
+  double eps = 0.0;
+  bool yielded = false;
+  for (int n = 0; n < 400; ++n) {
+    solver.step(pts, bc, dt);
+    // The grid is fixed, so the nodal velocity difference across the cell
+    // gives D_xx = rate exactly: the accumulated strain is rate * t.
+    eps += rate * dt;
+    const auto& s = pts.state[0].stress;
+    const double q = std::abs(s[0] - s[1]);  // von Mises stress in uniaxial strain
+    if (pts.state[0].plastic_strain == 0.0) {
+      EXPECT_NEAR(s[0] / ((lambda + 2 * mu) * eps), 1.0, 1e-9);
+      EXPECT_NEAR(q / (2 * mu * eps), 1.0, 1e-9);
+      EXPECT_LT(q, sy * (1 + 1e-12));
+    } else {
+      yielded = true;
+      EXPECT_NEAR(q / sy, 1.0, 1e-6);
+    }
+  }
+  EXPECT_TRUE(yielded);
+  EXPECT_GT(eps, 2 * eps_y);
+}
