@@ -137,7 +137,7 @@ class Daemon {
       layout.push_back({l.hello.program, l.app.size, l.app.first_world_rank});
     }
     record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line);
-    for (const auto& l : links_) record_->set_software(l.hello.program, l.hello.software);
+    for (const auto& l : links_) record_->set_software(l.hello.software);
     setup_log();
     welcome_all(true, "");
 

@@ -140,8 +140,7 @@ int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
       }
     }
     summary["stages"][stage]["status"] = "failed";
-    write_yaml_atomic(summary_path, summary,
-                      "scalar results per stage: {value, unit}; moduli in GPa, else metal units");
+    write_yaml_atomic(summary_path, summary, kSummaryHeader);
   }
   return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
 }

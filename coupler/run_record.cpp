@@ -99,13 +99,12 @@ RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout
   write_summary();
 }
 
-void RunRecord::set_software(const std::string& program, const std::vector<std::string>& items) {
+void RunRecord::set_software(const std::vector<std::string>& items) {
   for (const auto& item : items) {
     const auto eq = item.find('=');
     if (eq == std::string::npos) continue;
     manifest_["software"][item.substr(0, eq)] = item.substr(eq + 1);
   }
-  (void)program;
   write_manifest();
 }
 
@@ -199,8 +198,7 @@ void RunRecord::write_manifest() {
 }
 
 void RunRecord::write_summary() {
-  write_yaml_atomic(dir_ / "summary.yaml", summary_,
-                    "scalar results per stage: {value, unit}; moduli in GPa, else metal units");
+  write_yaml_atomic(dir_ / "summary.yaml", summary_, kSummaryHeader);
 }
 
 void write_stage_results(const std::filesystem::path& file, const std::string& stage,

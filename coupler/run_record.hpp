@@ -32,7 +32,8 @@ class RunRecord {
   [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }
   [[nodiscard]] std::filesystem::path log_path() const { return dir_ / "log.txt"; }
 
-  void set_software(const std::string& program, const std::vector<std::string>& items);
+  // Records "name=version" items a driver reported in its Hello.
+  void set_software(const std::vector<std::string>& items);
   void stage_started(const config::StageConfig& stage);
   void progress(const std::string& stage, int64_t step, int64_t total, double sim_time_ps);
   void stage_finished(const config::StageConfig& stage, const StageResults& results, double wall_s);
@@ -58,5 +59,9 @@ void write_stage_results(const std::filesystem::path& file, const std::string& s
                          const StageResults& results, double wall_s);
 
 std::string now_iso8601();
+
+// Header comment of every summary.yaml, wherever it is written.
+inline constexpr const char* kSummaryHeader =
+    "scalar results per stage: {value, unit}; moduli in GPa, else metal units";
 
 }  // namespace pbms::coupler
