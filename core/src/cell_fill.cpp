@@ -19,9 +19,15 @@ constexpr double kMaxCandidatePoints = 1e10;
 
 MaterialPoints fill_cells(const Region& region, const grid::RegularGrid& grid,
                           int points_per_axis) {
-  const int n = points_per_axis;
-  if (n < 1) {
-    throw Error(fmt::format("material points per cell and axis must be at least 1, got {}", n));
+  return fill_cells(region, grid, {points_per_axis, points_per_axis, points_per_axis});
+}
+
+MaterialPoints fill_cells(const Region& region, const grid::RegularGrid& grid,
+                          const std::array<int, 3>& points_per_axis) {
+  for (const int n : points_per_axis) {
+    if (n < 1) {
+      throw Error(fmt::format("material points per cell and axis must be at least 1, got {}", n));
+    }
   }
   MaterialPoints out;
   const Box b = region.bounds();
@@ -32,10 +38,13 @@ MaterialPoints fill_cells(const Region& region, const grid::RegularGrid& grid,
   // widened by one against rounding. NaN or infinite bounds fall back to the
   // whole grid through the comparisons in max/min.
   const double h = grid.cell_size();
-  const double step = h / n;
   std::array<std::vector<double>, 3> coordinate;
   double candidates = 1.0;
+  double volume = 1.0;
   for (int d = 0; d < 3; ++d) {
+    const int n = points_per_axis[static_cast<size_t>(d)];
+    const double step = h / n;
+    volume *= step;
     const double total = static_cast<double>(grid.cells()[d]) * n;
     const double lo = std::max(0.0, std::floor((b.lo[d] - grid.origin()[d]) / step) - 1.0);
     const double hi = std::min(total, std::ceil((b.hi[d] - grid.origin()[d]) / step) + 1.0);
@@ -57,7 +66,6 @@ MaterialPoints fill_cells(const Region& region, const grid::RegularGrid& grid,
     }
   }
 
-  const double volume = step * step * step;
   for (const double z : coordinate[2]) {
     for (const double y : coordinate[1]) {
       for (const double x : coordinate[0]) {

@@ -37,6 +37,9 @@ constexpr std::pair<units::Dimension, std::string_view> kDimNames[] = {
     {units::Dimension::kEnergy, "energy"},
     {units::Dimension::kMass, "mass"},
     {units::Dimension::kRate, "rate"},
+    {units::Dimension::kDensity, "density"},
+    {units::Dimension::kAcceleration, "acceleration"},
+    {units::Dimension::kForce, "force"},
 };
 
 Param make(std::string name, ParamKind kind, std::string doc) {

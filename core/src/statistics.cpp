@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <fmt/format.h>
+
 #include "pbms/error.hpp"
 
 namespace pbms::analysis {
@@ -50,6 +52,22 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
   f.slope_error = std::sqrt(rss / static_cast<double>(n - 2) / sxx);
   f.r2 = syy > 0.0 ? 1.0 - rss / syy : 1.0;
   return f;
+}
+
+double oscillation_period(const std::vector<double>& t, const std::vector<double>& y) {
+  if (t.size() != y.size()) throw Error("oscillation_period: t and y differ in length");
+  const double m = y.empty() ? 0.0 : mean(y);
+  std::vector<double> up;
+  for (size_t i = 1; i < y.size(); ++i) {
+    const double a = y[i - 1] - m, b = y[i] - m;
+    if (a < 0.0 && b >= 0.0) up.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-a) / (b - a));
+  }
+  if (up.size() < 2) {
+    throw Error(fmt::format("oscillation_period: the signal crosses its mean upwards {} time(s); "
+                            "run longer or sample more often",
+                            up.size()));
+  }
+  return (up.back() - up.front()) / static_cast<double>(up.size() - 1);
 }
 
 }  // namespace pbms::analysis

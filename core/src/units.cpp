@@ -32,6 +32,11 @@ constexpr UnitEntry kUnits[] = {
     {Dimension::kEnergy, "eV", 1.0},       {Dimension::kEnergy, "meV", 1.0e-3},
     {Dimension::kMass, "g/mol", 1.0},      {Dimension::kRate, "1/ps", 1.0},
     {Dimension::kRate, "%/ps", 0.01},      {Dimension::kRate, "1/ns", 1.0e-3},
+    {Dimension::kDensity, "g/cm^3", 1.0},  {Dimension::kDensity, "kg/m^3", 1.0e-3},
+    {Dimension::kAcceleration, "Å/ps^2", 1.0}, {Dimension::kAcceleration, "A/ps^2", 1.0},
+    {Dimension::kAcceleration, "m/s^2", 1.0e-14},
+    {Dimension::kForce, "eV/Å", 1.0},      {Dimension::kForce, "eV/A", 1.0},
+    {Dimension::kForce, "nN", 0.6241509074},
 };
 
 std::string_view trim(std::string_view s) {
@@ -62,6 +67,12 @@ std::string_view canonical_symbol(Dimension d) {
       return "g/mol";
     case Dimension::kRate:
       return "1/ps";
+    case Dimension::kDensity:
+      return "g/cm^3";
+    case Dimension::kAcceleration:
+      return "Å/ps^2";
+    case Dimension::kForce:
+      return "eV/Å";
   }
   return "?";
 }

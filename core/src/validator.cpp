@@ -119,6 +119,7 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
       return YAML::Node(v);
     }
     case ParamKind::kReal: {
+      if (p.allow_auto && s == "auto") return YAML::Node("auto");
       double v = 0.0;
       try {
         v = units::parse_quantity(s, p.dimension);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "material_points.hpp"
@@ -18,16 +19,18 @@ struct NodeConstraint {
   Vec3 velocity{0.0, 0.0, 0.0};
 };
 
-// A total force spread evenly over a set of points (an end load, a traction
-// integrated over the face it acts on), mapped to the grid with N.
+// A force on every point of a group, mapped to the grid with N: a traction
+// integrated over a face is its total divided by the group's point count
+// (the caller knows the count over all ranks).
 struct PointLoad {
-  std::vector<size_t> points;
-  Vec3 total_force{0.0, 0.0, 0.0};  // eV/Å
+  uint32_t group_mask = 0;
+  Vec3 force_per_point{0.0, 0.0, 0.0};  // eV/Å in metal units
 };
 
-// Points whose velocity components are prescribed (rigid grips, flyers).
+// Points of a group whose velocity components are prescribed (rigid grips,
+// flyers): their velocity is reset after each update.
 struct PointVelocity {
-  std::vector<size_t> points;
+  uint32_t group_mask = 0;
   std::array<bool, 3> axis{false, false, false};
   Vec3 velocity{0.0, 0.0, 0.0};
 };

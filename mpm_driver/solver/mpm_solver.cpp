@@ -11,169 +11,132 @@
 namespace pbms::mpm {
 namespace {
 
-inline Vec3 operator*(double s, const Vec3& a) {
-  return {s * a[0], s * a[1], s * a[2]};
-}
+inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
 inline void add_to(Vec3& a, const Vec3& b) {
   a[0] += b[0];
   a[1] += b[1];
   a[2] += b[2];
 }
-inline double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+inline void add_scaled(Vec3& a, double s, const Vec3& b) {
+  a[0] += s * b[0];
+  a[1] += s * b[1];
+  a[2] += s * b[2];
+}
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+grid::RegularGrid patch_grid(const GridPatch& patch) {
+  const auto& d = patch.domain;
+  const auto e = patch.nodes.extent();
+  if (patch.nodes.empty() || e[0] < 2 || e[1] < 2 || e[2] < 2 ||
+      !(patch.nodes.intersected(d.node_box()) == patch.nodes)) {
+    throw Error("MPM solver: the patch must be a box of at least one cell inside the grid");
+  }
+  std::array<double, 3> origin{};
+  for (size_t a = 0; a < 3; ++a) origin[a] = d.origin()[a] + patch.nodes.lo[a] * d.cell_size();
+  return grid::RegularGrid(origin, d.cell_size(), {e[0] - 1, e[1] - 1, e[2] - 1});
 }
 
 }  // namespace
 
-UnitSystem UnitSystem::metal() {
-  return {1.0 / units::kBarPerEvPerA3, 1.0 / units::kMvv2e};
-}
+UnitSystem UnitSystem::metal() { return {1.0 / units::kBarPerEvPerA3, 1.0 / units::kMvv2e}; }
 
-MpmSolver::MpmSolver(grid::RegularGrid grid, std::unique_ptr<grid::ShapeFunction> shape,
+MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape,
                      std::vector<std::unique_ptr<Material>> materials, SolverOptions options)
-    : grid_(grid), shape_(std::move(shape)), materials_(std::move(materials)), opt_(options) {
-  const auto n = static_cast<size_t>(grid_.node_count());
-  mass_.assign(n, 0.0);
-  momentum_.assign(n, {0.0, 0.0, 0.0});
-  force_.assign(n, {0.0, 0.0, 0.0});
+    : patch_(std::move(patch)),
+      local_(patch_grid(patch_)),
+      shape_(std::move(shape)),
+      materials_(std::move(materials)),
+      opt_(options) {
+  if (opt_.ddmp && (patch_.sum_shared || patch_.nodes != patch_.domain.node_box())) {
+    // The dual-domain operator needs nodal volumes and neighbouring nodal
+    // gradients across box faces, which the halo exchange does not carry.
+    throw Error(
+        "DDMP gradients need the whole, non-periodic grid on one rank: run the mpm_driver "
+        "with 1 rank, or use plain gradients");
+  }
+  const auto n = static_cast<size_t>(local_.node_count());
+  node_.assign(n, {});
   velocity_.assign(n, {0.0, 0.0, 0.0});
+  acceleration_.assign(n, {0.0, 0.0, 0.0});
+  remap_velocity_.assign(n, {0.0, 0.0, 0.0});
+  node_force_.assign(n, {0.0, 0.0, 0.0});
 }
 
-void MpmSolver::evaluate(const Vec3& x, int64_t id, grid::ShapeStencil& s) const {
-  if (!grid_.contains(x)) {
-    throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})", id, x[0],
-                            x[1], x[2]));
+void MpmSolver::evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const {
+  const Vec3& x = points.x[p];
+  if (!local_.contains(x)) {
+    throw Error(fmt::format("material point {} at ({:.6g}, {:.6g}, {:.6g}) is outside {}",
+                            points.id[p], x[0], x[1], x[2],
+                            patch_.domain.contains(x) ? "this rank's box of the grid" : "the grid"));
   }
-  shape_->evaluate(grid_, x, s);
+  shape_->evaluate(local_, x, s);
 }
 
 double MpmSolver::alpha(const MaterialPoints& points, size_t p) const {
   if (!opt_.ddmp) return 1.0;
-  return opt_.ddmp_face_vanishing ? grid::face_vanishing_blend(grid_, points.x[p]) : 0.0;
+  return opt_.ddmp_face_vanishing ? grid::face_vanishing_blend(local_, points.x[p]) : 0.0;
 }
 
-void MpmSolver::map_mass_momentum(const MaterialPoints& points) {
-  std::fill(mass_.begin(), mass_.end(), 0.0);
-  std::fill(momentum_.begin(), momentum_.end(), Vec3{0.0, 0.0, 0.0});
+void MpmSolver::sum_shared(double* first, int components) {
+  if (patch_.sum_shared) patch_.sum_shared(first, components, 7);
+}
+
+// Mass, and optionally momentum and the internal and external forces, of
+// every point to its nodes (s-1 to s-4). The forces use the stress the
+// points carry now, which under update-stress-last is the previous step's.
+void MpmSolver::scatter(const MaterialPoints& points, const BoundaryConditions& bc,
+                        bool momentum, bool force) {
+  std::fill(node_.begin(), node_.end(), NodeSums{});
+  const bool dual = force && opt_.ddmp;
+  if (dual) S_.assign(node_.size(), {0, 0, 0, 0, 0, 0});
+  const double kv = opt_.units.stress_volume_to_energy;
+  const double kf = opt_.units.force_per_mass_to_accel;
+  const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
   grid::ShapeStencil s;
   for (size_t p = 0; p < points.size(); ++p) {
-    evaluate(points.x[p], points.id[p], s);
+    evaluate(points, p, s);
     const double m = points.mass[p];
-    for (int k = 0; k < s.count; ++k) {
-      const auto i = static_cast<size_t>(s.node[static_cast<size_t>(k)]);
-      const double w = s.N[static_cast<size_t>(k)] * m;
-      mass_[i] += w;
-      add_to(momentum_[i], w * points.v[p]);
-    }
-  }
-}
-
-void MpmSolver::apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
-                                       bool is_velocity) const {
-  for (const auto& c : bc.nodes) {
-    const auto box = c.nodes.intersected(grid_.node_box());
-    for (int k = box.lo[2]; k < box.hi[2]; ++k) {
-      for (int j = box.lo[1]; j < box.hi[1]; ++j) {
-        for (int i = box.lo[0]; i < box.hi[0]; ++i) {
-          auto& f = field[static_cast<size_t>(grid_.node_index({i, j, k}))];
-          for (int a = 0; a < 3; ++a) {
-            if (c.axis[static_cast<size_t>(a)]) {
-              f[static_cast<size_t>(a)] = is_velocity ? c.velocity[static_cast<size_t>(a)] : 0.0;
-            }
-          }
-        }
+    const Vec3& v = points.v[p];
+    Vec3 fext{0.0, 0.0, 0.0};
+    double V = 0.0, al = 1.0;
+    const std::array<double, 6>* sg = nullptr;
+    if (force) {
+      if (body) fext = (m / kf) * bc.body_acceleration;
+      for (const auto& load : bc.loads) {
+        if (points.in_group(p, load.group_mask)) add_to(fext, load.force_per_point);
       }
+      V = points.volume(p) * kv;
+      al = alpha(points, p);
+      sg = &points.state[p].stress.voigt;  // xx yy zz yz xz xy
     }
-  }
-}
-
-void MpmSolver::prepare_ddmp(const MaterialPoints& points) {
-  dual_ = std::make_unique<grid::DualDomainOperator>(grid_, *shape_, points.x);
-}
-
-void MpmSolver::compute_velocity_gradients(const MaterialPoints& points, std::vector<Mat3>& L) {
-  L.assign(points.size(), Mat3::Zero());
-  // Dual-domain part: a nodal velocity gradient G_j = sum_i v_i (x) D_ji,
-  // interpolated to the points with N (seed Appendix 2's nodal central
-  // difference, in 3-D).
-  std::vector<Mat3> G;
-  if (opt_.ddmp) {
-    G.assign(mass_.size(), Mat3::Zero());
-    for (size_t j = 0; j < G.size(); ++j) {
-      for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
-        const auto& v = velocity_[static_cast<size_t>(e.node)];
-        for (int a = 0; a < 3; ++a) {
-          for (int b = 0; b < 3; ++b)
-            G[j](a, b) += v[static_cast<size_t>(a)] * e.d[static_cast<size_t>(b)];
-        }
-      }
-    }
-  }
-  grid::ShapeStencil s;
-  for (size_t p = 0; p < points.size(); ++p) {
-    evaluate(points.x[p], points.id[p], s);
-    const double al = alpha(points, p);
-    Mat3& Lp = L[p];
-    for (int k = 0; k < s.count; ++k) {
-      const auto kk = static_cast<size_t>(k);
-      const auto& v = velocity_[static_cast<size_t>(s.node[kk])];
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) {
-          Lp(a, b) += al * v[static_cast<size_t>(a)] * s.dN[kk][static_cast<size_t>(b)];
-        }
-      }
-      if (opt_.ddmp && al < 1.0) Lp += (1.0 - al) * s.N[kk] * G[static_cast<size_t>(s.node[kk])];
-    }
-  }
-}
-
-void MpmSolver::update_stress(MaterialPoints& points, const std::vector<Mat3>& L, double dt) {
-  for (size_t p = 0; p < points.size(); ++p) {
-    points.F[p] = (Mat3::Identity() + dt * L[p]) * points.F[p];
-    const double J = points.F[p].determinant();
-    if (!(J > 0.0)) {
-      throw Error(
-          fmt::format("material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted "
-                      "(det F = {:.3g}): the time step is too large or the material "
-                      "failed",
-                      points.id[p], points.x[p][0], points.x[p][1], points.x[p][2], J));
-    }
-    points.state[p].density = points.mass[p] / (points.volume0[p] * J);
-    materials_[static_cast<size_t>(points.material[p])]->update(L[p], dt, points.state[p]);
-  }
-}
-
-void MpmSolver::internal_forces(const MaterialPoints& points) {
-  std::fill(force_.begin(), force_.end(), Vec3{0.0, 0.0, 0.0});
-  const double k = opt_.units.stress_volume_to_energy;
-  std::vector<std::array<double, 6>> S;  // dual-domain nodal stress moments
-  if (opt_.ddmp) S.assign(mass_.size(), {0, 0, 0, 0, 0, 0});
-  grid::ShapeStencil s;
-  for (size_t p = 0; p < points.size(); ++p) {
-    evaluate(points.x[p], points.id[p], s);
-    const double al = alpha(points, p);
-    const auto& sg = points.state[p].stress.voigt;  // xx yy zz yz xz xy
-    const double V = points.volume(p) * k;
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
-      const auto i = static_cast<size_t>(s.node[qq]);
+      NodeSums& nd = node_[static_cast<size_t>(s.node[qq])];
+      const double N = s.N[qq];
+      nd.mass += N * m;
+      if (momentum) add_scaled(nd.momentum, N * m, v);
+      if (!force) continue;
+      const auto& t = *sg;
       const auto& g = s.dN[qq];
       const double w = al * V;
-      force_[i][0] -= w * (sg[0] * g[0] + sg[5] * g[1] + sg[4] * g[2]);
-      force_[i][1] -= w * (sg[5] * g[0] + sg[1] * g[1] + sg[3] * g[2]);
-      force_[i][2] -= w * (sg[4] * g[0] + sg[3] * g[1] + sg[2] * g[2]);
-      if (opt_.ddmp && al < 1.0) {
-        const double wd = (1.0 - al) * V * s.N[qq];
-        for (int c = 0; c < 6; ++c) S[i][static_cast<size_t>(c)] += wd * sg[static_cast<size_t>(c)];
+      nd.force[0] += N * fext[0] - w * (t[0] * g[0] + t[5] * g[1] + t[4] * g[2]);
+      nd.force[1] += N * fext[1] - w * (t[5] * g[0] + t[1] * g[1] + t[3] * g[2]);
+      nd.force[2] += N * fext[2] - w * (t[4] * g[0] + t[3] * g[1] + t[2] * g[2]);
+      if (dual && al < 1.0) {
+        auto& S = S_[static_cast<size_t>(s.node[qq])];
+        const double wd = (1.0 - al) * V * N;
+        for (size_t c = 0; c < 6; ++c) S[c] += wd * t[c];
       }
     }
   }
-  if (!opt_.ddmp) return;
-  for (size_t j = 0; j < S.size(); ++j) {
-    const auto& t = S[j];
+  if (!dual) return;
+  // Dual-domain part of the internal force: nodal stress moments spread
+  // with the operator's rows D_ji.
+  for (size_t j = 0; j < S_.size(); ++j) {
+    const auto& t = S_[j];
     if (t == std::array<double, 6>{0, 0, 0, 0, 0, 0}) continue;
     for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
-      auto& f = force_[static_cast<size_t>(e.node)];
+      auto& f = node_[static_cast<size_t>(e.node)].force;
       const auto& d = e.d;
       f[0] -= t[0] * d[0] + t[5] * d[1] + t[4] * d[2];
       f[1] -= t[5] * d[0] + t[1] * d[1] + t[3] * d[2];
@@ -182,121 +145,214 @@ void MpmSolver::internal_forces(const MaterialPoints& points) {
   }
 }
 
+void MpmSolver::apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
+                                       bool is_velocity) const {
+  for (const auto& c : bc.nodes) {
+    const auto box = c.nodes.intersected(patch_.nodes);
+    for (int k = box.lo[2]; k < box.hi[2]; ++k) {
+      for (int j = box.lo[1]; j < box.hi[1]; ++j) {
+        for (int i = box.lo[0]; i < box.hi[0]; ++i) {
+          auto& f = field[static_cast<size_t>(patch_.nodes.local_index({i, j, k}))];
+          for (size_t a = 0; a < 3; ++a) {
+            if (c.axis[a]) f[a] = is_velocity ? c.velocity[a] : 0.0;
+          }
+        }
+      }
+    }
+  }
+}
+
+void MpmSolver::nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const {
+  for (size_t i = 0; i < node_.size(); ++i) {
+    out[i] = node_[i].mass > mass_floor_ ? (1.0 / node_[i].mass) * node_[i].momentum
+                                         : Vec3{0.0, 0.0, 0.0};
+  }
+  apply_node_constraints(bc, out, true);
+}
+
+void MpmSolver::nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const {
+  // Dual-domain nodal velocity gradient G_j = sum_i v_i (x) D_ji, later
+  // interpolated to the points with N (seed Appendix 2's nodal central
+  // difference, in 3-D).
+  G.assign(node_.size(), Mat3::Zero());
+  for (size_t j = 0; j < G.size(); ++j) {
+    for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
+      const auto& vi = v[static_cast<size_t>(e.node)];
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b)
+          G[j](a, b) += vi[static_cast<size_t>(a)] * e.d[static_cast<size_t>(b)];
+      }
+    }
+  }
+}
+
+void MpmSolver::velocity_gradient(const MaterialPoints& points, size_t p,
+                                  const grid::ShapeStencil& s, const std::vector<Vec3>& v,
+                                  const std::vector<Mat3>& G, Mat3& L) const {
+  const double al = alpha(points, p);
+  double l[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  for (int q = 0; q < s.count; ++q) {
+    const auto qq = static_cast<size_t>(q);
+    const auto& vi = v[static_cast<size_t>(s.node[qq])];
+    const auto& g = s.dN[qq];
+    for (size_t a = 0; a < 3; ++a) {
+      l[a][0] += vi[a] * g[0];
+      l[a][1] += vi[a] * g[1];
+      l[a][2] += vi[a] * g[2];
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) L(a, b) = al * l[a][b];
+  if (opt_.ddmp && al < 1.0) {
+    for (int q = 0; q < s.count; ++q) {
+      const auto qq = static_cast<size_t>(q);
+      L += (1.0 - al) * s.N[qq] * G[static_cast<size_t>(s.node[qq])];
+    }
+  }
+}
+
+void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3& L,
+                                    double dt) const {
+  points.F[p] = (Mat3::Identity() + dt * L) * points.F[p];
+  const double J = points.F[p].determinant();
+  if (!(J > 0.0)) {
+    throw Error(fmt::format(
+        "material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted (det F = {:.3g}): the time "
+        "step is too large or the material failed",
+        points.id[p], points.x[p][0], points.x[p][1], points.x[p][2], J));
+  }
+  points.state[p].density = points.mass[p] / (points.volume0[p] * J);
+  materials_[static_cast<size_t>(points.material[p])]->update(L, dt, points.state[p]);
+}
+
+void MpmSolver::finish_positions(MaterialPoints& points) const {
+  const auto& d = patch_.domain;
+  for (size_t p = 0; p < points.size(); ++p) {
+    Vec3& x = points.x[p];
+    for (size_t a = 0; a < 3; ++a) {
+      if (!patch_.periodic[a]) continue;
+      const double lo = d.origin()[a], len = d.upper()[a] - d.origin()[a];
+      if (x[a] < lo || x[a] >= lo + len) {
+        x[a] = lo + std::fmod(x[a] - lo, len);
+        if (x[a] < lo) x[a] += len;
+        if (x[a] >= lo + len) x[a] = lo;
+      }
+    }
+    if (!d.contains(x)) {
+      throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})",
+                              points.id[p], x[0], x[1], x[2]));
+    }
+  }
+}
+
 void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
   const size_t n = points.size();
-  if (n == 0) return;
-  mass_floor_ =
-      *std::min_element(points.mass.begin(), points.mass.end()) * opt_.small_mass_fraction;
+  double ref = opt_.reference_point_mass;
+  if (ref <= 0.0 && n > 0) ref = *std::min_element(points.mass.begin(), points.mass.end());
+  mass_floor_ = ref * opt_.small_mass_fraction;
   const double kf = opt_.units.force_per_mass_to_accel;
-
-  map_mass_momentum(points);
-  if (opt_.ddmp) prepare_ddmp(points);
-  auto nodal_velocity_from_momentum = [&] {
-    for (size_t i = 0; i < mass_.size(); ++i) {
-      velocity_[i] = mass_[i] > mass_floor_ ? (1.0 / mass_[i]) * momentum_[i] : Vec3{0, 0, 0};
-    }
-    apply_node_constraints(bc, velocity_, true);
-  };
-  if (opt_.stress_update == StressUpdate::kFirst) {
-    nodal_velocity_from_momentum();
-    compute_velocity_gradients(points, L_);
-    update_stress(points, L_, dt);
-  }
-
-  internal_forces(points);
+  const bool last = opt_.stress_update == StressUpdate::kLast;
+  if (opt_.ddmp && n > 0) dual_ = std::make_unique<grid::DualDomainOperator>(local_, *shape_, points.x);
   grid::ShapeStencil s;
-  const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
-  if (body) {
+  Mat3 L;
+
+  if (last) {
+    scatter(points, bc, true, true);  // s-1 to s-4
+    sum_shared(&node_[0].mass, 7);
+  } else {
+    // Update-stress-first: the gradient of the mapped velocity updates the
+    // stress before it makes the internal force.
+    scatter(points, bc, true, false);
+    sum_shared(&node_[0].mass, 4);
+    nodal_velocities(bc, velocity_);
+    if (opt_.ddmp) nodal_gradient(velocity_, G_);
     for (size_t p = 0; p < n; ++p) {
-      evaluate(points.x[p], points.id[p], s);
-      const Vec3 fb = (points.mass[p] / kf) * bc.body_acceleration;
-      for (int q = 0; q < s.count; ++q) {
-        add_to(force_[static_cast<size_t>(s.node[static_cast<size_t>(q)])],
-               s.N[static_cast<size_t>(q)] * fb);
-      }
+      evaluate(points, p, s);
+      velocity_gradient(points, p, s, velocity_, G_, L);
+      update_point_stress(points, p, L, dt);
     }
-  }
-  for (const auto& load : bc.loads) {
-    if (load.points.empty()) continue;
-    const Vec3 share = (1.0 / static_cast<double>(load.points.size())) * load.total_force;
-    for (size_t p : load.points) {
-      evaluate(points.x[p], points.id[p], s);
-      for (int q = 0; q < s.count; ++q) {
-        add_to(force_[static_cast<size_t>(s.node[static_cast<size_t>(q)])],
-               s.N[static_cast<size_t>(q)] * share);
-      }
-    }
+    scatter(points, bc, true, true);
+    sum_shared(&node_[0].mass, 7);
   }
 
-  // Nodal update. `force_` becomes the nodal acceleration, and `velocity_`
-  // the end-of-step velocity; constrained components are imposed on both so
-  // that FLIP and PIC agree with the constraint.
-  std::vector<Vec3> v_old(mass_.size());
-  for (size_t i = 0; i < mass_.size(); ++i) {
-    if (mass_[i] > mass_floor_) {
-      v_old[i] = (1.0 / mass_[i]) * momentum_[i];
-      force_[i] = (kf / mass_[i]) * force_[i];
-      velocity_[i] = v_old[i];
-      add_to(velocity_[i], dt * force_[i]);
+  // Nodal momentum update (s-5, s-6). Constrained components are imposed on
+  // the new velocity, and the acceleration is taken from the constrained
+  // change, so that FLIP and PIC both honour the constraint.
+  for (size_t i = 0; i < node_.size(); ++i) {
+    const NodeSums& nd = node_[i];
+    node_force_[i] = nd.force;
+    if (nd.mass > mass_floor_) {
+      const double inv = 1.0 / nd.mass;
+      const Vec3 v_old = inv * nd.momentum;
+      velocity_[i] = v_old;
+      add_scaled(velocity_[i], dt * kf * inv, nd.force);
+      acceleration_[i] = v_old;  // completed below
     } else {
-      v_old[i] = force_[i] = velocity_[i] = {0.0, 0.0, 0.0};
+      velocity_[i] = acceleration_[i] = {0.0, 0.0, 0.0};
     }
   }
   apply_node_constraints(bc, velocity_, true);
-  for (size_t i = 0; i < mass_.size(); ++i) {
-    if (mass_[i] > mass_floor_) {
-      for (int a = 0; a < 3; ++a) {
-        const auto aa = static_cast<size_t>(a);
-        force_[i][aa] = (velocity_[i][aa] - v_old[i][aa]) / dt;
-      }
+  for (size_t i = 0; i < node_.size(); ++i) {
+    if (node_[i].mass > mass_floor_) {
+      for (size_t a = 0; a < 3; ++a) acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
     }
   }
 
-  // Grid to points: velocities by the FLIP/PIC blend, positions with the
-  // nodal velocity field (s-7, s-8).
-  std::vector<Vec3> x_old = points.x;
+  // Grid to points (s-7), and under update-stress-last the remap of the new
+  // point momenta with this step's shape functions (s-10) in the same pass.
+  reaction_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
+  for (auto& nd : node_) nd.momentum = {0.0, 0.0, 0.0};
   for (size_t p = 0; p < n; ++p) {
-    evaluate(points.x[p], points.id[p], s);
+    evaluate(points, p, s);
     Vec3 acc{0, 0, 0}, vel{0, 0, 0};
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
       const auto i = static_cast<size_t>(s.node[qq]);
-      add_to(acc, s.N[qq] * force_[i]);
-      add_to(vel, s.N[qq] * velocity_[i]);
+      add_scaled(acc, s.N[qq], acceleration_[i]);
+      add_scaled(vel, s.N[qq], velocity_[i]);
     }
-    Vec3 flip = points.v[p];
-    add_to(flip, dt * acc);
-    for (int a = 0; a < 3; ++a) {
-      const auto aa = static_cast<size_t>(a);
-      points.v[p][aa] = opt_.flip * flip[aa] + (1.0 - opt_.flip) * vel[aa];
+    Vec3& vp = points.v[p];
+    for (size_t a = 0; a < 3; ++a) {
+      vp[a] = opt_.flip * (vp[a] + dt * acc[a]) + (1.0 - opt_.flip) * vel[a];
     }
-    add_to(points.x[p], dt * vel);
-  }
-  for (const auto& pv : bc.point_velocities) {
-    for (size_t p : pv.points) {
-      for (int a = 0; a < 3; ++a) {
-        if (pv.axis[static_cast<size_t>(a)])
-          points.v[p][static_cast<size_t>(a)] = pv.velocity[static_cast<size_t>(a)];
+    for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+      const auto& pv = bc.point_velocities[c];
+      if (!points.in_group(p, pv.group_mask)) continue;
+      for (size_t a = 0; a < 3; ++a) {
+        if (!pv.axis[a]) continue;
+        reaction_[c][a] += points.mass[p] * (pv.velocity[a] - vp[a]) / (dt * kf);
+        vp[a] = pv.velocity[a];
       }
+    }
+    if (last) {
+      for (int q = 0; q < s.count; ++q) {
+        const auto qq = static_cast<size_t>(q);
+        add_scaled(node_[static_cast<size_t>(s.node[qq])].momentum, s.N[qq] * points.mass[p], vp);
+      }
+    } else {
+      add_scaled(points.x[p], dt, vel);  // s-8
     }
   }
 
-  if (opt_.stress_update == StressUpdate::kLast) {
-    // Remap the updated point momenta to the grid with the shape functions
-    // of this step (s-10, s-11), then the stress update (s-12 to s-14).
-    std::swap(points.x, x_old);
-    map_mass_momentum(points);
-    nodal_velocity_from_momentum();
-    compute_velocity_gradients(points, L_);
-    std::swap(points.x, x_old);
-    update_stress(points, L_, dt);
-  }
-  for (size_t p = 0; p < n; ++p) {
-    if (!grid_.contains(points.x[p])) {
-      throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})",
-                              points.id[p], points.x[p][0], points.x[p][1], points.x[p][2]));
+  if (last) {
+    sum_shared(&node_[0].momentum[0], 3);
+    nodal_velocities(bc, remap_velocity_);  // s-11
+    if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
+    // Stress update (s-12 to s-14) at the positions the step started from,
+    // then the move with the momentum-update velocity (s-8).
+    for (size_t p = 0; p < n; ++p) {
+      evaluate(points, p, s);
+      velocity_gradient(points, p, s, remap_velocity_, G_, L);
+      Vec3 vel{0, 0, 0};
+      for (int q = 0; q < s.count; ++q) {
+        const auto qq = static_cast<size_t>(q);
+        add_scaled(vel, s.N[qq], velocity_[static_cast<size_t>(s.node[qq])]);
+      }
+      update_point_stress(points, p, L, dt);
+      add_scaled(points.x[p], dt, vel);
     }
   }
+  finish_positions(points);
 }
 
 double MpmSolver::stable_time_step(const MaterialPoints& points) const {
@@ -308,7 +364,7 @@ double MpmSolver::stable_time_step(const MaterialPoints& points) const {
         materials_[static_cast<size_t>(points.material[p])]->wave_speed(points.state[p]) * to_speed;
     cmax = std::max(cmax, c + std::sqrt(dot(points.v[p], points.v[p])));
   }
-  return cmax > 0.0 ? grid_.cell_size() / cmax : INFINITY;
+  return cmax > 0.0 ? patch_.domain.cell_size() / cmax : INFINITY;
 }
 
 EnergySummary MpmSolver::energy(const MaterialPoints& points) const {

@@ -1,9 +1,11 @@
 // One explicit MPM time step on a regular background grid (Sulsky, Chen &
 // Schreyer 1994; seed §2.4.2 steps s-1 to s-14), with update-stress-last or
 // -first, a FLIP/PIC blend and plain or DDMP (dual-domain) gradients.
-// Physics only: no MPI, no files; the driver owns decomposition and output.
+// Physics only: no MPI, no files. A decomposed run gives each rank's solver
+// its box of the grid and a function that completes shared-node sums.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,7 +39,23 @@ struct SolverOptions {
   // Nodes lighter than this fraction of the lightest point's mass are left
   // out of the divisions (end of seed §2.4.2): their velocity would be noise.
   double small_mass_fraction = 1e-3;
+  // The lightest point's mass over all ranks; 0 takes the lightest local
+  // point, which is only right for a serial run.
+  double reference_point_mass = 0.0;
   UnitSystem units;
+};
+
+// The part of the grid one solver works on.
+struct GridPatch {
+  grid::RegularGrid domain;  // the whole grid
+  grid::NodeBox nodes;       // this solver's nodes, in the domain's indices
+  std::array<bool, 3> periodic{false, false, false};
+  // Adds the parts other boxes (or periodic images) hold to the shared
+  // nodes: `components` values per node, `stride` doubles apart. Empty when
+  // nothing is shared.
+  std::function<void(double* data, int components, int stride)> sum_shared;
+
+  static GridPatch whole(const grid::RegularGrid& g) { return {g, g.node_box(), {}, {}}; }
 };
 
 struct EnergySummary {
@@ -49,44 +67,72 @@ struct EnergySummary {
 
 class MpmSolver {
  public:
-  MpmSolver(grid::RegularGrid grid, std::unique_ptr<grid::ShapeFunction> shape,
+  MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape,
             std::vector<std::unique_ptr<Material>> materials, SolverOptions options);
+  // A serial solver on the whole grid.
+  MpmSolver(const grid::RegularGrid& grid, std::unique_ptr<grid::ShapeFunction> shape,
+            std::vector<std::unique_ptr<Material>> materials, SolverOptions options)
+      : MpmSolver(GridPatch::whole(grid), std::move(shape), std::move(materials), options) {}
 
-  // Advances the points by dt. Throws pbms::Error naming the point (id,
-  // position) if one leaves the grid.
+  // Advances the points by dt. Points end wrapped on periodic axes and may
+  // have left this solver's box (the caller migrates them). Throws
+  // pbms::Error naming the point (id, position) if one leaves the grid.
   void step(MaterialPoints& points, const BoundaryConditions& bc, double dt);
 
-  // The largest stable time step: h / max_p (c_p + |v_p|).
+  // The largest stable time step over these points: h / max_p (c_p + |v_p|).
   [[nodiscard]] double stable_time_step(const MaterialPoints& points) const;
   [[nodiscard]] EnergySummary energy(const MaterialPoints& points) const;
+  // Force (eV/Å, summed over this solver's points) that held each
+  // bc.point_velocities entry at its prescribed velocity in the last step:
+  // the reaction a rigid grip or flyer feels.
+  [[nodiscard]] const std::vector<Vec3>& point_velocity_reactions() const { return reaction_; }
 
-  [[nodiscard]] const grid::RegularGrid& grid() const { return grid_; }
+  [[nodiscard]] const grid::RegularGrid& grid() const { return patch_.domain; }
+  [[nodiscard]] const GridPatch& patch() const { return patch_; }
   [[nodiscard]] const Material& material(int i) const {
     return *materials_[static_cast<size_t>(i)];
   }
-  // Nodal fields after the last step (for grid output).
-  [[nodiscard]] const std::vector<double>& nodal_mass() const { return mass_; }
-  [[nodiscard]] const std::vector<Vec3>& nodal_velocity() const { return velocity_; }
+  [[nodiscard]] size_t material_count() const { return materials_.size(); }
+  // Nodal fields after the last step, over patch().nodes (for grid output):
+  // mass and the velocity of the momentum update (s-6).
+  [[nodiscard]] double nodal_mass(size_t local) const { return node_[local].mass; }
+  [[nodiscard]] const Vec3& nodal_velocity(size_t local) const { return velocity_[local]; }
+  // Internal plus external nodal force of the last step, eV/Å.
+  [[nodiscard]] const Vec3& nodal_force(size_t local) const { return node_force_[local]; }
 
  private:
-  void evaluate(const Vec3& x, int64_t id, grid::ShapeStencil& s) const;
-  void map_mass_momentum(const MaterialPoints& points);
-  void compute_velocity_gradients(const MaterialPoints& points, std::vector<Mat3>& L);
-  void update_stress(MaterialPoints& points, const std::vector<Mat3>& L, double dt);
-  void internal_forces(const MaterialPoints& points);
+  // 7 doubles per node, summed across ranks in one exchange.
+  struct NodeSums {
+    double mass = 0.0;
+    Vec3 momentum{0.0, 0.0, 0.0};
+    Vec3 force{0.0, 0.0, 0.0};
+  };
+
+  void evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const;
+  void sum_shared(double* first, int components);
+  void scatter(const MaterialPoints& points, const BoundaryConditions& bc, bool momentum,
+               bool force);
+  void nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const;
   void apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
                               bool is_velocity) const;
-  void prepare_ddmp(const MaterialPoints& points);
+  void velocity_gradient(const MaterialPoints& points, size_t p, const grid::ShapeStencil& s,
+                         const std::vector<Vec3>& v, const std::vector<Mat3>& G, Mat3& L) const;
+  void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
+  void update_point_stress(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
+  void finish_positions(MaterialPoints& points) const;
   double alpha(const MaterialPoints& points, size_t p) const;
 
-  grid::RegularGrid grid_;
+  GridPatch patch_;
+  grid::RegularGrid local_;  // the patch as a grid of its own
   std::unique_ptr<grid::ShapeFunction> shape_;
   std::vector<std::unique_ptr<Material>> materials_;
   SolverOptions opt_;
   double mass_floor_ = 0.0;
-  std::vector<double> mass_;
-  std::vector<Vec3> momentum_, force_, velocity_;
-  std::vector<Mat3> L_;
+  std::vector<NodeSums> node_;
+  std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
+  std::vector<Vec3> reaction_;
+  std::vector<Mat3> G_;  // DDMP nodal velocity gradients
+  std::vector<std::array<double, 6>> S_;  // DDMP nodal stress moments
   std::unique_ptr<grid::DualDomainOperator> dual_;
 };
 

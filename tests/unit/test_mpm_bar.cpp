@@ -57,9 +57,10 @@ BarRun run_bar(bool ddmp, double t_profile) {
   fixed.nodes = {{1, 0, 0}, {2, 2, 2}};
   fixed.axis = {true, false, false};
   bc.nodes.push_back(fixed);
+  pts.groups.back() = 1u;  // the loaded end point
   PointLoad load;
-  load.points = {pts.size() - 1};
-  load.total_force = {kStress * kH * kH, 0.0, 0.0};
+  load.group_mask = 1u;
+  load.force_per_point = {kStress * kH * kH, 0.0, 0.0};
   bc.loads.push_back(load);
 
   const double dt = 0.1 * kH / kC;

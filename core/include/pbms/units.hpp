@@ -12,6 +12,8 @@ inline constexpr double kBoltzmann = 8.617333262e-5;  // eV/K
 // (g/mol)(Å/ps)^2 -> eV
 inline constexpr double kMvv2e = 1.0364269e-4;
 inline constexpr double kBarPerGPa = 1.0e4;
+// 1 g/mol/Å^3 in g/cm^3: 1e24 / N_A.
+inline constexpr double kGramPerCm3PerAmuPerA3 = 1.66053906660;
 inline constexpr double kBarPerEvPerA3 = 1.6021766208e6;  // eV/Å^3 -> bar
 
 enum class Dimension {
@@ -24,6 +26,9 @@ enum class Dimension {
   kEnergy,       // eV
   kMass,         // g/mol
   kRate,         // 1/ps
+  kDensity,      // g/cm^3 (LAMMPS metal); solvers use g/mol/Å^3 = 1/kGramPerCm3PerAmuPerA3
+  kAcceleration, // Å/ps^2
+  kForce,        // eV/Å
 };
 
 // Canonical symbol of a dimension in metal units ("bar", "Å", ...).

@@ -19,4 +19,9 @@ struct LineFit {
 // Ordinary least squares y = slope * x + intercept. Needs >= 3 points.
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
 
+// Period of an oscillating sample y(t): the mean spacing of its upward
+// crossings of its mean, each located by linear interpolation. Throws
+// pbms::Error with fewer than two crossings.
+double oscillation_period(const std::vector<double>& t, const std::vector<double>& y);
+
 }  // namespace pbms::analysis

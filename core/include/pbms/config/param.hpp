@@ -45,6 +45,7 @@ struct Param {
   std::vector<std::string> choices;
   bool allow_reference = false;  // may be {from: <stage>.<output>}
   bool names_material = false;   // value must name an entry of `materials`
+  bool allow_auto = false;       // kReal may also be the word `auto`
   std::vector<Param> fields;
   // kMap with variants: `discriminator` names the key whose value picks the
   // extra fields in `variants` (stage "kind", material "kind").
@@ -93,6 +94,10 @@ struct Param {
   Param& length(size_t lo, size_t hi) {
     min_length = lo;
     max_length = hi;
+    return *this;
+  }
+  Param& or_auto() {
+    allow_auto = true;
     return *this;
   }
   Param& referable() {

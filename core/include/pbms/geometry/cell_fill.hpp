@@ -4,6 +4,7 @@
 // exactly its geometric volume.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "pbms/geometry/region.hpp"
@@ -26,5 +27,8 @@ struct MaterialPoints {
 // span at most ~1e10 candidate points.
 [[nodiscard]] MaterialPoints fill_cells(const Region& region, const grid::RegularGrid& grid,
                                         int points_per_axis);
+// The same with its own count per axis (a 1-D bar one cell across).
+[[nodiscard]] MaterialPoints fill_cells(const Region& region, const grid::RegularGrid& grid,
+                                        const std::array<int, 3>& points_per_axis);
 
 }  // namespace pbms::geometry

@@ -1,0 +1,74 @@
+// Half Verlet neighbour list built from a cell list: each pair within
+// cutoff + skin appears once, under its lower index. The list stays valid
+// until some particle has moved more than skin/2 since the build.
+//
+// Periodic images are resolved at build time: every entry carries the image
+// shift that made the pair a minimum image, and positions are wrapped into
+// the box only by build(). The force loop then needs no rounding per pair,
+// r_ij = x_i - x_j + shift, however far particles drift between builds.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/dpd_particles.hpp"
+#include "kernels/orthogonal_box.hpp"
+
+namespace pbms::dpd {
+
+class HalfNeighbourList {
+ public:
+  // An entry packs the neighbour index (low 27 bits) and the image shift
+  // code (high 5 bits) in one word, so the force loop streams one array.
+  using Entry = std::uint32_t;
+  static constexpr int kIndexBits = 27;
+  static constexpr std::size_t kMaxParticles = std::size_t{1} << kIndexBits;
+
+  // Lists pairs closer than cutoff + skin (both Å). Throws pbms::Error for a
+  // non-positive cutoff or a negative skin.
+  HalfNeighbourList(double cutoff, double skin);
+
+  // Wraps positions into the box on periodic axes (counting the crossings
+  // in particles.image), then lists all pairs. Throws pbms::Error when a
+  // periodic length is below 2 (cutoff + skin), where a particle could
+  // interact with two images of another, or beyond kMaxParticles.
+  void build(DpdParticles& particles, const OrthogonalBox& box);
+
+  // True when some particle has moved more than skin/2 since the last build,
+  // so that a pair now inside the cutoff might be missing; true before any build.
+  [[nodiscard]] bool needs_rebuild(const DpdParticles& particles) const;
+
+  [[nodiscard]] double cutoff() const { return cutoff_; }
+  [[nodiscard]] double skin() const { return skin_; }
+  [[nodiscard]] std::size_t particle_count() const {
+    return first_.empty() ? 0 : first_.size() - 1;
+  }
+  [[nodiscard]] std::size_t pair_count() const { return entries_.size(); }
+  [[nodiscard]] long build_count() const { return builds_; }
+
+  // Neighbours of particle i are entries [first(i), first(i + 1)).
+  [[nodiscard]] std::size_t first(std::size_t i) const { return first_[i]; }
+  [[nodiscard]] const Entry* entries() const { return entries_.data(); }
+  [[nodiscard]] static std::size_t neighbour(Entry e) { return e & ((Entry{1} << kIndexBits) - 1); }
+  [[nodiscard]] static int shift_code(Entry e) { return static_cast<int>(e >> kIndexBits); }
+  // Added to x_i - x_j to give the separation the list was built for, Å.
+  [[nodiscard]] const Vec3& shift(int code) const { return shifts_[code]; }
+  [[nodiscard]] const std::array<Vec3, 27>& shifts() const { return shifts_; }
+
+ private:
+  double cutoff_;
+  double skin_;
+  long builds_ = 0;
+  std::vector<std::size_t> first_;
+  std::vector<Entry> entries_;
+  std::array<Vec3, 27> shifts_{};
+  std::vector<Vec3> x_at_build_;
+  // Cell list scratch, kept between builds to avoid reallocation.
+  std::vector<int> cell_of_;
+  std::vector<int> cell_start_;
+  std::vector<int> in_cell_order_;
+};
+
+}  // namespace pbms::dpd

@@ -1,0 +1,51 @@
+// The conservative-force interface of the DPD engine. A style is called once
+// per step for the whole neighbour list, never once per pair: each style runs
+// its own loop with its pair formula inlined (pair_force_loop.hpp).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <map>
+#include <string>
+#include <string_view>
+
+#include "kernels/dpd_particles.hpp"
+#include "kernels/half_neighbour_list.hpp"
+
+namespace pbms::dpd {
+
+// A style's parameters as a user writes them, inline in a workflow or in a
+// potential file: numbers in metal units, and names of files (tables).
+struct PairStyleParameters {
+  std::map<std::string, double, std::less<>> numbers;
+  std::map<std::string, std::string, std::less<>> texts;
+};
+
+// Whether a call must also sum energy and virial. Forces alone are what most
+// steps need, and the tallies cost about a tenth of a cheap pair formula.
+enum class Tally { kForcesOnly, kEnergyAndVirial };
+
+struct PairResult {
+  double energy = 0.0;  // eV; zero unless tallied
+  // Σ over pairs of r_ij ⊗ f_ij, with r_ij = x_i − x_j and f_ij the force on
+  // i from j, in eV; xx, yy, zz, xy, xz, yz as LAMMPS orders them. Pressure is
+  // (2 E_kin + trace) / (3 V). Zero unless tallied.
+  std::array<double, 6> virial{};
+};
+
+class PairStyle {
+ public:
+  virtual ~PairStyle() = default;
+
+  // Adds the conservative forces to particles.f (the caller clears f, so
+  // that dissipative and random forces can be summed into the same array).
+  // The list must have been built with at least this style's cutoff.
+  virtual PairResult compute(DpdParticles& particles, const HalfNeighbourList& list,
+                             Tally tally) = 0;
+  // Beyond this distance (Å) the style contributes nothing.
+  [[nodiscard]] virtual double cutoff() const = 0;
+  // The registry name, as a user writes it in a config.
+  [[nodiscard]] virtual std::string_view name() const = 0;
+};
+
+}  // namespace pbms::dpd

@@ -1,0 +1,55 @@
+// An mpm_run stage's parameters turned into solver inputs: the grid, the
+// materials, every material point of every body (the same on every rank, in
+// a fixed order, so that global ids do not depend on the decomposition),
+// the named groups and the boundary conditions. Pure: no MPI, no files.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/geometry/region.hpp"
+#include "pbms/geometry/region_spec.hpp"
+#include "solver/mpm_solver.hpp"
+
+namespace pbms::mpm {
+
+// The materials: a stage's `materials:` entries in solver units.
+struct MaterialSet {
+  std::vector<std::unique_ptr<Material>> models;
+  std::vector<std::string> names;
+  std::vector<double> density;  // solver units
+};
+
+struct MpmModel {
+  grid::RegularGrid grid{{0, 0, 0}, 1.0, {1, 1, 1}};
+  std::array<bool, 3> periodic{false, false, false};
+  bool metal_units = true;
+  std::string shape_function = "linear";
+  SolverOptions options;
+  MaterialPoints points;
+  std::vector<std::string> group_names;  // bit g of MaterialPoints::groups
+  std::vector<int64_t> group_sizes;      // points per group, all ranks
+  BoundaryConditions bc;
+  // For each bc.point_velocities entry, the group it holds (for probes).
+  std::vector<std::string> point_velocity_groups;
+
+  [[nodiscard]] uint32_t group_mask(const std::string& name) const;  // throws if unknown
+};
+
+// Builds the region a config node describes (`style: block` ...).
+[[nodiscard]] std::unique_ptr<geometry::Region> region_from_yaml(const YAML::Node& node);
+
+// Reads the stage's `materials` entries that `bodies` use, converting
+// densities and moduli to solver units when `metal_units`.
+[[nodiscard]] MaterialSet materials_from_yaml(const std::vector<std::string>& names,
+                                              const std::vector<YAML::Node>& entries,
+                                              bool metal_units);
+
+// `material_entry(name)` returns the workflow's materials entry of a name.
+[[nodiscard]] MpmModel build_model(const YAML::Node& params, MaterialSet& materials);
+
+}  // namespace pbms::mpm
