@@ -73,7 +73,7 @@ NodeBox GridPartition::owned_nodes_of(int rank) const {
   const auto c = cells_of(rank);
   NodeBox b{c.lo, c.hi};
   for (size_t a = 0; a < 3; ++a) {
-    if (!periodic_[a] && c.hi[a] == grid_.cells()[a]) b.hi[a] += 1;
+    if (c.hi[a] == grid_.cells()[a]) b.hi[a] += 1;
   }
   return b;
 }

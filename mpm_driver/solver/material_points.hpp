@@ -27,6 +27,9 @@ struct MaterialPoints {
   // Bit g set: the point belongs to group g of the run (loads, grips and
   // probes name groups; the bits travel with the point between ranks).
   std::vector<uint32_t> groups;
+  // Work the stress has done on the point since the start, in energy units:
+  // the energy a rate-form (hypoelastic) model has no state function for.
+  std::vector<double> work;
 
   [[nodiscard]] size_t size() const { return x.size(); }
   [[nodiscard]] double volume(size_t p) const { return volume0[p] * F[p].determinant(); }
@@ -43,6 +46,7 @@ struct MaterialPoints {
     state.push_back(s);
     material.push_back(mat);
     groups.push_back(group_bits);
+    work.push_back(0.0);
   }
   [[nodiscard]] bool in_group(size_t p, uint32_t mask) const { return (groups[p] & mask) != 0; }
 
@@ -58,6 +62,7 @@ struct MaterialPoints {
     to.state.push_back(state[p]);
     to.material.push_back(material[p]);
     to.groups.push_back(groups[p]);
+    to.work.push_back(work[p]);
     erase(p);
   }
   void erase(size_t p) {
@@ -72,6 +77,7 @@ struct MaterialPoints {
       state[p] = state[last];
       material[p] = material[last];
       groups[p] = groups[last];
+      work[p] = work[last];
     }
     id.pop_back();
     x.pop_back();
@@ -82,6 +88,7 @@ struct MaterialPoints {
     state.pop_back();
     material.pop_back();
     groups.pop_back();
+    work.pop_back();
   }
 };
 

@@ -213,6 +213,9 @@ void MpmSolver::velocity_gradient(const MaterialPoints& points, size_t p,
 
 void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3& L,
                                     double dt) const {
+  const double power_before =
+      double_contraction(points.state[p].stress, SymmetricTensor::from_matrix(0.5 * (L + L.transpose()))) *
+      points.volume(p);
   points.F[p] = (Mat3::Identity() + dt * L) * points.F[p];
   const double J = points.F[p].determinant();
   if (!(J > 0.0)) {
@@ -223,6 +226,11 @@ void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3
   }
   points.state[p].density = points.mass[p] / (points.volume0[p] * J);
   materials_[static_cast<size_t>(points.material[p])]->update(L, dt, points.state[p]);
+  // Stress power sigma : D V, by the trapezoidal rule over the step.
+  const double power_after =
+      double_contraction(points.state[p].stress, SymmetricTensor::from_matrix(0.5 * (L + L.transpose()))) *
+      points.volume0[p] * J;
+  points.work[p] += 0.5 * dt * (power_before + power_after) * opt_.units.stress_volume_to_energy;
 }
 
 void MpmSolver::finish_positions(MaterialPoints& points) const {
@@ -377,6 +385,7 @@ EnergySummary MpmSolver::energy(const MaterialPoints& points) const {
     const double V = points.volume(p) * ks;
     e.stored += V * m.stored_energy_density(points.state[p]);
     e.dissipated += V * m.dissipated_energy_density(points.state[p]);
+    e.work += points.work[p];
   }
   return e;
 }

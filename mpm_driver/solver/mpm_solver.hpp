@@ -58,10 +58,16 @@ struct GridPatch {
   static GridPatch whole(const grid::RegularGrid& g) { return {g, g.node_box(), {}, {}}; }
 };
 
+// Energies of a set of points. `stored` and `dissipated` come from the
+// material's state; `work` is the stress work done on the points since the
+// start, which for a rate-form model at finite strain is the internal
+// energy that balances the kinetic energy (its stored-energy estimate from
+// the current stress is exact only at small strain).
 struct EnergySummary {
   double kinetic = 0.0;
   double stored = 0.0;
   double dissipated = 0.0;
+  double work = 0.0;
   [[nodiscard]] double total() const { return kinetic + stored + dissipated; }
 };
 

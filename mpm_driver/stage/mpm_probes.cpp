@@ -30,10 +30,12 @@ MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal
       units_.push_back(u);
     };
     if (p.kind == "energy") {
-      for (const char* c : {"kinetic", "stored", "dissipated"}) add(c, energy);
+      // internal = stored at the start + stress work since; total =
+      // kinetic + internal (see EnergySummary).
+      for (const char* c : {"kinetic", "stored", "dissipated", "internal"}) add(c, energy);
       add("total", energy);
-      energy_column_ = static_cast<int>(p.column + 3);
-      n_sums_ += 3;
+      energy_column_ = static_cast<int>(p.column + 4);
+      n_sums_ += 4;
     } else if (p.kind == "momentum") {
       for (const char* c : xyz) add(c, momentum);
       n_sums_ += 3;
@@ -81,6 +83,7 @@ void MpmProbes::local(const MaterialPoints& pts, const MpmSolver& solver,
       s[0] = e.kinetic;
       s[1] = e.stored;
       s[2] = e.dissipated;
+      s[3] = e.work;
     } else if (p.kind == "momentum") {
       for (size_t i = 0; i < pts.size(); ++i) {
         for (size_t a = 0; a < 3; ++a) s[a] += pts.mass[i] * pts.v[i][a];
@@ -128,7 +131,9 @@ std::vector<double> MpmProbes::values(const std::vector<double>& sums,
       o[0] = s[0];
       o[1] = s[1];
       o[2] = s[2];
-      o[3] = s[0] + s[1] + s[2];
+      const double initial = reference_.empty() ? s[1] + s[2] : reference_[p.column + 3];
+      o[3] = initial + s[3];
+      o[4] = s[0] + o[3];
     } else if (p.kind == "momentum" || p.kind == "group_force") {
       std::copy(s, s + 3, o);
     } else if (p.kind == "mean_stress") {

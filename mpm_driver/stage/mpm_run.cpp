@@ -105,6 +105,7 @@ void MpmRunStage::run(StageContext& ctx) {
       sorted.add(src.id[i], src.x[i], src.volume0[i], src.state[i], src.material[i], src.groups[i]);
       sorted.v.back() = src.v[i];
       sorted.mass.back() = src.mass[i];
+      sorted.work.back() = src.work[i];
     }
     model.points = std::move(sorted);
   }

@@ -8,9 +8,9 @@
 namespace pbms::mpm {
 namespace {
 
-// One point as raw doubles: id, x, v, mass, volume0, F, the state, material
-// and groups. Integers travel as doubles; ids below 2^53 are exact.
-constexpr size_t kPacked = 1 + 3 + 3 + 1 + 1 + 9 + 6 + 3 + 1 + 1;
+// One point as raw doubles: id, x, v, mass, volume0, F, the state, material,
+// groups and work. Integers travel as doubles; ids below 2^53 are exact.
+constexpr size_t kPacked = 1 + 3 + 3 + 1 + 1 + 9 + 6 + 3 + 1 + 1 + 1;
 
 void pack(const MaterialPoints& pts, size_t p, std::vector<double>& out) {
   out.push_back(static_cast<double>(pts.id[p]));
@@ -26,6 +26,7 @@ void pack(const MaterialPoints& pts, size_t p, std::vector<double>& out) {
   out.push_back(s.internal_energy);
   out.push_back(static_cast<double>(pts.material[p]));
   out.push_back(static_cast<double>(pts.groups[p]));
+  out.push_back(pts.work[p]);
 }
 
 void unpack(const double* d, MaterialPoints& pts) {
@@ -39,6 +40,7 @@ void unpack(const double* d, MaterialPoints& pts) {
   pts.v.back() = {d[4], d[5], d[6]};
   pts.mass.back() = d[7];
   for (int i = 0; i < 9; ++i) pts.F.back()(i / 3, i % 3) = d[9 + i];
+  pts.work.back() = d[29];
 }
 
 }  // namespace

@@ -45,8 +45,9 @@ class GridPartition {
   // corners, shared on faces with the neighbouring boxes.
   [[nodiscard]] NodeBox nodes_of(int rank) const;
   // The nodes a rank writes in output: the lower corner of each of its
-  // cells, plus the grid's upper faces on non-periodic axes. These tile the
-  // grid's nodes exactly once (the image nodes of periodic axes excluded).
+  // cells, plus the grid's upper faces. These tile the grid's nodes exactly
+  // once; on a periodic axis the upper face repeats the lower one, which
+  // keeps the written grid whole for viewers.
   [[nodiscard]] NodeBox owned_nodes_of(int rank) const;
   // The rank whose cells hold x (a position inside the grid, already
   // wrapped on periodic axes); the upper face belongs to the last cell.

@@ -1,0 +1,93 @@
+#include "integrators/dpd_integrator.hpp"
+
+#include <algorithm>
+
+#include "integrators/shardlow_sweep.hpp"
+#include "pbms/error.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::dpd {
+
+namespace {
+
+double list_cutoff(const PairStyle& pair, const DpdIntegratorSettings& settings) {
+  if (settings.scheme == DpdScheme::kNve) return pair.cutoff();
+  return std::max(pair.cutoff(), settings.friction.cutoff);
+}
+
+const DpdIntegratorSettings& checked(const DpdIntegratorSettings& settings) {
+  if (!(settings.dt > 0.0)) throw Error("DPD integrator: dt must be > 0 ps");
+  if (settings.scheme == DpdScheme::kNve) return settings;
+  if (!(settings.friction.gamma >= 0.0)) throw Error("DPD integrator: gamma must be >= 0 g/mol/ps");
+  if (!(settings.friction.cutoff > 0.0)) throw Error("DPD integrator: DPD cutoff must be > 0 Å");
+  if (settings.scheme == DpdScheme::kShardlowDpde && !(settings.heat_capacity > 0.0)) {
+    throw Error("DPD integrator: DPDE needs a heat capacity > 0 eV/K");
+  }
+  if (settings.scheme != DpdScheme::kShardlowDpde && !(settings.friction.temperature >= 0.0)) {
+    throw Error("DPD integrator: temperature must be >= 0 K");
+  }
+  return settings;
+}
+
+}  // namespace
+
+DpdIntegrator::DpdIntegrator(DpdParticles& particles, const OrthogonalBox& box, PairStyle& pair,
+                             const DpdIntegratorSettings& settings)
+    : particles_(particles),
+      box_(box),
+      pair_(pair),
+      settings_(checked(settings)),
+      list_(list_cutoff(pair, settings), settings.skin),
+      step_(settings.first_step) {
+  list_.build(particles_, box_);
+  compute_forces(Tally::kForcesOnly);
+}
+
+void DpdIntegrator::half_kick() {
+  // f / m in eV/Å/(g/mol) is mvv2e Å/ps² too small.
+  const double half_dt = 0.5 * settings_.dt / units::kMvv2e;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const double factor = half_dt / particles_.mass(i);
+    for (int a = 0; a < 3; ++a) particles_.v[i][a] += factor * particles_.f[i][a];
+  }
+}
+
+PairResult DpdIntegrator::compute_forces(Tally tally) {
+  if (list_.needs_rebuild(particles_)) list_.build(particles_, box_);
+  particles_.zero_forces();
+  PairResult result = pair_.compute(particles_, list_, tally);
+  if (settings_.scheme == DpdScheme::kVelocityVerlet) {
+    // The velocities here are the half-step ones (see the header).
+    add_dissipative_random_forces(particles_, particles_.v, list_, settings_.friction, step_,
+                                  settings_.dt);
+  }
+  return result;
+}
+
+PairResult DpdIntegrator::step(Tally tally) {
+  const double dt = settings_.dt;
+  if (settings_.scheme == DpdScheme::kShardlow) {
+    shardlow_sweep(particles_, list_, settings_.friction, step_, dt);
+  } else if (settings_.scheme == DpdScheme::kShardlowDpde) {
+    shardlow_sweep_energy_conserving(particles_, list_, settings_.friction,
+                                     settings_.heat_capacity, step_, dt);
+  }
+  half_kick();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];
+  }
+  ++step_;
+  const PairResult result = compute_forces(tally);
+  half_kick();
+  return result;
+}
+
+PairResult DpdIntegrator::potential() {
+  scratch_forces_.swap(particles_.f);
+  particles_.f.assign(particles_.size(), {0.0, 0.0, 0.0});
+  const PairResult result = pair_.compute(particles_, list_, Tally::kEnergyAndVirial);
+  scratch_forces_.swap(particles_.f);
+  return result;
+}
+
+}  // namespace pbms::dpd
