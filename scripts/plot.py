@@ -309,9 +309,11 @@ def x_column(table):
     return table.order[0]
 
 
-def plot_generic(stage, outdir):
+def plot_generic(stage, outdir, skip=()):
     written = []
     for tname, t in stage.tables.items():
+        if tname in skip:
+            continue
         x_name = x_column(t)
         x = t[x_name]
         ys = [c for c in t.order
@@ -347,7 +349,70 @@ def plot_generic(stage, outdir):
     return written
 
 
+# ---------------------------------------------------------------- mpm_run
+
+def plot_mpm_run(stage, outdir):
+    """Energies of the probes table, the wave-front profile when present,
+    and every other probe through the generic plot."""
+    written = []
+    p = stage.tables.get("probes")
+    if p is not None and p.has("time", "energy.kinetic", "energy.internal", "energy.total"):
+        t = p["time"]
+        fig, ax = plt.subplots(figsize=(6.4, 4.0))
+        for col, name in (("energy.kinetic", "kinetic"), ("energy.internal", "internal (stress work)"),
+                          ("energy.stored", "strain (from stress)"), ("energy.total", "total")):
+            if p.has(col):
+                ax.plot(t, p[col], "-", label=name, lw=2 if col.endswith("total") else 1.2)
+        ax.set_xlabel(label("time", p.units.get("time")))
+        ax.set_ylabel(label("energy", p.units.get("energy.total")))
+        drift = stage.scalar("energy_max_deviation")
+        extra = f" (largest |ΔE|/E0 = {drift:.2%})" if drift is not None else ""
+        ax.set_title(f"{stage.name}: energies{extra}")
+        ax.grid(alpha=0.3)
+        ax.legend()
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_energy.png"))
+    prof = stage.tables.get("profile")
+    if prof is not None and prof.has("x", "stress_xx", "exact_stress_xx"):
+        order = np.argsort(prof["x"])
+        fig, ax = plt.subplots(figsize=(7.0, 4.0))
+        ax.plot(prof["x"][order], prof["stress_xx"][order], ".-", ms=3, lw=0.6,
+                label=f"{stage.name} ({stage.attrs.get('gradient', '?')} gradients)")
+        ax.plot(prof["x"][order], prof["exact_stress_xx"][order], "k-", lw=1.2, label="exact")
+        ax.set_xlabel(label("x", prof.units.get("x")))
+        ax.set_ylabel(label("stress_xx", prof.units.get("stress_xx")))
+        ax.set_title(f"{stage.name}: stress profile at t = {stage.attrs.get('profile_time', '?')}")
+        ax.grid(alpha=0.3)
+        ax.legend()
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_profile.png"))
+    written += plot_generic(stage, outdir, skip=("profile",))
+    return written
+
+
+def plot_profiles_together(stages, outdir):
+    """All wave-front profiles of a run on one axis (plain MPM against DDMP)."""
+    with_profile = [s for s in stages if s.kind == "mpm_run" and s.tables.get("profile") is not None]
+    if len(with_profile) < 2:
+        return []
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    exact = None
+    for st in with_profile:
+        prof = st.tables["profile"]
+        order = np.argsort(prof["x"])
+        rms = st.scalar("rms_from_exact")
+        ax.plot(prof["x"][order], prof["stress_xx"][order], ".-", ms=2.5, lw=0.6,
+                label=f"{st.name} ({st.attrs.get('gradient', '?')}), rms {rms:.4g}")
+        exact = (prof["x"][order], prof["exact_stress_xx"][order])
+    ax.plot(*exact, "k-", lw=1.2, label="exact")
+    ax.set_xlabel(label("x", with_profile[0].tables["profile"].units.get("x")))
+    ax.set_ylabel(label("stress_xx", with_profile[0].tables["profile"].units.get("stress_xx")))
+    ax.set_title(f"stress profiles at t = {with_profile[0].attrs.get('profile_time', '?')}")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return finish(fig, os.path.join(outdir, "profiles.png"))
+
+
 PLOTTERS = {
+    "mpm_run": plot_mpm_run,
     "md_isotherm": plot_isotherm,
     "md_tension": plot_tension,
     "md_elastic": plot_elastic,
@@ -373,6 +438,7 @@ def main(argv):
         return 1
 
     written = []
+    finished = []
     with f:
         for name, group in f.items():
             if not isinstance(group, h5py.Group):
@@ -384,11 +450,13 @@ def main(argv):
                 continue
             if not stage.tables:
                 continue
+            finished.append(stage)
             plotter = PLOTTERS.get(stage.kind)
             result = plotter(stage, run_dir) if plotter else None
             if result is None:
                 result = plot_generic(stage, run_dir)
             written += result
+        written += plot_profiles_together(finished, run_dir)
     if not written:
         print(f"plot.py: nothing to plot in {path} (no finished stage with tables)",
               file=sys.stderr)

@@ -140,6 +140,7 @@ std::string Param::type_text() const {
     t += fmt::format(" [{}]", units::canonical_symbol(dimension));
   }
   if (kind == ParamKind::kChoice) t += fmt::format(" ({})", fmt::join(choices, " | "));
+  if (allow_auto) t += " or auto";
   return t;
 }
 
@@ -163,6 +164,7 @@ YAML::Node to_yaml(const Param& p) {
   if (!p.choices.empty()) n["choices"] = p.choices;
   if (p.allow_reference) n["referable"] = true;
   if (p.names_material) n["material"] = true;
+  if (p.allow_auto) n["or_auto"] = true;
   for (const auto& f : p.fields) n["fields"].push_back(to_yaml(f));
   if (!p.discriminator.empty()) n["discriminator"] = p.discriminator;
   for (const auto& [v, fs] : p.variants) {
@@ -204,6 +206,7 @@ Param param_from_yaml(const YAML::Node& n) {
   if (n["choices"]) p.choices = n["choices"].as<std::vector<std::string>>();
   p.allow_reference = n["referable"] && n["referable"].as<bool>();
   p.names_material = n["material"] && n["material"].as<bool>();
+  p.allow_auto = n["or_auto"] && n["or_auto"].as<bool>();
   for (const auto& f : n["fields"]) p.fields.push_back(param_from_yaml(f));
   if (n["discriminator"]) p.discriminator = n["discriminator"].as<std::string>();
   for (const auto& vn : n["variants"]) {

@@ -69,8 +69,8 @@ PairResult DpdIntegrator::step(Tally tally) {
   if (settings_.scheme == DpdScheme::kShardlow) {
     shardlow_sweep(particles_, list_, settings_.friction, step_, dt);
   } else if (settings_.scheme == DpdScheme::kShardlowDpde) {
-    shardlow_sweep_energy_conserving(particles_, list_, settings_.friction,
-                                     settings_.heat_capacity, step_, dt);
+    shardlow_sweep_energy_conserving(particles_, list_, settings_.friction, settings_.heat_capacity,
+                                     step_, dt);
   }
   half_kick();
   for (std::size_t i = 0; i < particles_.size(); ++i) {

@@ -33,8 +33,8 @@ enum class DpdScheme {
 
 struct DpdIntegratorSettings {
   DpdScheme scheme = DpdScheme::kNve;
-  double dt = 0.01;    // ps
-  double skin = 1.0;   // Å, neighbour list
+  double dt = 0.01;   // ps
+  double skin = 1.0;  // Å, neighbour list
   // γ, DPD cutoff and seed of every scheme but kNve; temperature only for
   // the isothermal ones.
   DpdPairFriction friction;

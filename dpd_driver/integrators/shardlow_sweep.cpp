@@ -14,9 +14,9 @@ namespace {
 // PairTemperature(i, j) gives the k_B T (in g/mol·Å²/ps²) of σ² = 2 γ k_B T;
 // KineticChange(i, j, ΔK) receives the kinetic energy (eV) the update added.
 template <class PairTemperature, class KineticChange>
-void sweep(DpdParticles& particles, const HalfNeighbourList& list,
-           const DpdPairFriction& friction, std::int64_t step, double dt,
-           PairTemperature pair_thermal_energy, KineticChange on_kinetic_change) {
+void sweep(DpdParticles& particles, const HalfNeighbourList& list, const DpdPairFriction& friction,
+           std::int64_t step, double dt, PairTemperature pair_thermal_energy,
+           KineticChange on_kinetic_change) {
   const double cutoff_squared = friction.cutoff * friction.cutoff;
   const double inverse_cutoff = 1.0 / friction.cutoff;
   const double half_dt = 0.5 * dt;
@@ -46,8 +46,8 @@ void sweep(DpdParticles& particles, const HalfNeighbourList& list,
 
       // Momentum transfers along e_ij, g/mol·Å/ps.
       const double friction_rate = friction.gamma * w_r * w_r;
-      const double theta = pair_gaussian_pair_noise(friction.seed, particles.id[i],
-                                                    particles.id[j], step);
+      const double theta =
+          pair_gaussian_pair_noise(friction.seed, particles.id[i], particles.id[j], step);
       const double random_impulse = std::sqrt(2.0 * friction.gamma * pair_thermal_energy(i, j)) *
                                     w_r * theta * half_dt / sqrt_dt;
       auto approach = [&] {

@@ -37,10 +37,9 @@ void add_dissipative_random_forces(DpdParticles& particles, const std::vector<Ve
       const double approach = ex * (velocity[i][0] - velocity[j][0]) +
                               ey * (velocity[i][1] - velocity[j][1]) +
                               ez * (velocity[i][2] - velocity[j][2]);
-      const double theta = pair_gaussian_pair_noise(friction.seed, particles.id[i],
-                                                    particles.id[j], step);
-      const double magnitude =
-          -friction_factor * w_r * w_r * approach + noise_factor * w_r * theta;
+      const double theta =
+          pair_gaussian_pair_noise(friction.seed, particles.id[i], particles.id[j], step);
+      const double magnitude = -friction_factor * w_r * w_r * approach + noise_factor * w_r * theta;
       particles.f[i][0] += magnitude * ex;
       particles.f[i][1] += magnitude * ey;
       particles.f[i][2] += magnitude * ez;

@@ -16,7 +16,6 @@ struct FccCrystal {
 // axis, box from the origin, 4 particles per cell with ids 1, 2, ... and the
 // given mass (g/mol), at rest. Throws pbms::Error for a non-positive count
 // or lattice constant.
-FccCrystal fcc_crystal(int cells_x, int cells_y, int cells_z, double lattice_constant,
-                       double mass);
+FccCrystal fcc_crystal(int cells_x, int cells_y, int cells_z, double lattice_constant, double mass);
 
 }  // namespace pbms::dpd

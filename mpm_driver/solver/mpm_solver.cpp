@@ -60,6 +60,20 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape
   acceleration_.assign(n, {0.0, 0.0, 0.0});
   remap_velocity_.assign(n, {0.0, 0.0, 0.0});
   node_force_.assign(n, {0.0, 0.0, 0.0});
+  // A node is counted by one rank only: the one whose cells have it as a
+  // lower corner, or the last box on a non-periodic upper face.
+  unique_node_.assign(n, 0);
+  const auto& d = patch_.domain;
+  for (std::int64_t li = 0; li < static_cast<std::int64_t>(n); ++li) {
+    const auto ijk = patch_.nodes.ijk_of_local(li);
+    bool unique = true;
+    for (size_t a = 0; a < 3; ++a) {
+      const bool last_in_box = ijk[a] == patch_.nodes.hi[a] - 1;
+      const bool grid_face = ijk[a] == d.cells()[a];
+      if (last_in_box && (patch_.periodic[a] || !grid_face)) unique = false;
+    }
+    unique_node_[static_cast<size_t>(li)] = unique ? 1 : 0;
+  }
 }
 
 void MpmSolver::evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const {
@@ -87,6 +101,7 @@ void MpmSolver::sum_shared(double* first, int components) {
 void MpmSolver::scatter(const MaterialPoints& points, const BoundaryConditions& bc,
                         bool momentum, bool force) {
   std::fill(node_.begin(), node_.end(), NodeSums{});
+  rigid_.assign(bc.point_velocities.size(), std::vector<double>(node_.size(), 0.0));
   const bool dual = force && opt_.ddmp;
   if (dual) S_.assign(node_.size(), {0, 0, 0, 0, 0, 0});
   const double kv = opt_.units.stress_volume_to_energy;
@@ -108,6 +123,13 @@ void MpmSolver::scatter(const MaterialPoints& points, const BoundaryConditions& 
       V = points.volume(p) * kv;
       al = alpha(points, p);
       sg = &points.state[p].stress.voigt;  // xx yy zz yz xz xy
+    }
+    for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+      if (!points.in_group(p, bc.point_velocities[c].group_mask)) continue;
+      for (int q = 0; q < s.count; ++q) {
+        const auto qq = static_cast<size_t>(q);
+        if (s.N[qq] > 0.0) rigid_[c][static_cast<size_t>(s.node[qq])] += s.N[qq];
+      }
     }
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
@@ -233,6 +255,39 @@ void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3
   points.work[p] += 0.5 * dt * (power_before + power_after) * opt_.units.stress_volume_to_energy;
 }
 
+void MpmSolver::sum_rigid() {
+  if (!patch_.sum_shared) return;
+  for (auto& w : rigid_) patch_.sum_shared(w.data(), 1, 1);
+}
+
+// Nodes that points of a prescribed-velocity group touch move with the
+// group (the rigid-material treatment of NairnMPM and Uintah): material
+// next to a piston or grip then cannot flow into it.
+void MpmSolver::impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const {
+  for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+    const auto& pv = bc.point_velocities[c];
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (rigid_[c][i] <= 0.0) continue;
+      for (size_t a = 0; a < 3; ++a) {
+        if (pv.axis[a]) v[i][a] = pv.velocity[a];
+      }
+    }
+  }
+}
+
+// A group with a prescribed velocity moves rigidly at it: the grid's
+// velocity there also carries the pressure of the material it pushes, and
+// moving the points with it would let a piston drift off its course.
+void MpmSolver::hold_prescribed(const MaterialPoints& points, const BoundaryConditions& bc,
+                                size_t p, Vec3& vel) const {
+  for (const auto& pv : bc.point_velocities) {
+    if (!points.in_group(p, pv.group_mask)) continue;
+    for (size_t a = 0; a < 3; ++a) {
+      if (pv.axis[a]) vel[a] = pv.velocity[a];
+    }
+  }
+}
+
 void MpmSolver::finish_positions(MaterialPoints& points) const {
   const auto& d = patch_.domain;
   for (size_t p = 0; p < points.size(); ++p) {
@@ -267,12 +322,15 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
   if (last) {
     scatter(points, bc, true, true);  // s-1 to s-4
     sum_shared(&node_[0].mass, 7);
+    sum_rigid();
   } else {
     // Update-stress-first: the gradient of the mapped velocity updates the
     // stress before it makes the internal force.
     scatter(points, bc, true, false);
     sum_shared(&node_[0].mass, 4);
+    sum_rigid();
     nodal_velocities(bc, velocity_);
+    impose_rigid(bc, velocity_);
     if (opt_.ddmp) nodal_gradient(velocity_, G_);
     for (size_t p = 0; p < n; ++p) {
       evaluate(points, p, s);
@@ -281,6 +339,7 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
     }
     scatter(points, bc, true, true);
     sum_shared(&node_[0].mass, 7);
+    sum_rigid();
   }
 
   // Nodal momentum update (s-5, s-6). Constrained components are imposed on
@@ -300,6 +359,22 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
     }
   }
   apply_node_constraints(bc, velocity_, true);
+  reaction_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
+  for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+    const auto& pv = bc.point_velocities[c];
+    for (size_t i = 0; i < node_.size(); ++i) {
+      if (rigid_[c][i] <= 0.0) continue;
+      for (size_t a = 0; a < 3; ++a) {
+        if (!pv.axis[a]) continue;
+        // The force that holds the node at the group's velocity, counted
+        // once per node over all ranks.
+        if (unique_node_[i] && node_[i].mass > mass_floor_) {
+          reaction_[c][a] += node_[i].mass * (pv.velocity[a] - velocity_[i][a]) / (dt * kf);
+        }
+        velocity_[i][a] = pv.velocity[a];
+      }
+    }
+  }
   for (size_t i = 0; i < node_.size(); ++i) {
     if (node_[i].mass > mass_floor_) {
       for (size_t a = 0; a < 3; ++a) acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
@@ -308,7 +383,6 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
 
   // Grid to points (s-7), and under update-stress-last the remap of the new
   // point momenta with this step's shape functions (s-10) in the same pass.
-  reaction_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
   for (auto& nd : node_) nd.momentum = {0.0, 0.0, 0.0};
   for (size_t p = 0; p < n; ++p) {
     evaluate(points, p, s);
@@ -328,7 +402,6 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
       if (!points.in_group(p, pv.group_mask)) continue;
       for (size_t a = 0; a < 3; ++a) {
         if (!pv.axis[a]) continue;
-        reaction_[c][a] += points.mass[p] * (pv.velocity[a] - vp[a]) / (dt * kf);
         vp[a] = pv.velocity[a];
       }
     }
@@ -338,6 +411,7 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
         add_scaled(node_[static_cast<size_t>(s.node[qq])].momentum, s.N[qq] * points.mass[p], vp);
       }
     } else {
+      hold_prescribed(points, bc, p, vel);
       add_scaled(points.x[p], dt, vel);  // s-8
     }
   }
@@ -345,6 +419,7 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
   if (last) {
     sum_shared(&node_[0].momentum[0], 3);
     nodal_velocities(bc, remap_velocity_);  // s-11
+    impose_rigid(bc, remap_velocity_);
     if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
     // Stress update (s-12 to s-14) at the positions the step started from,
     // then the move with the momentum-update velocity (s-8).
@@ -357,6 +432,7 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
         add_scaled(vel, s.N[qq], velocity_[static_cast<size_t>(s.node[qq])]);
       }
       update_point_stress(points, p, L, dt);
+      hold_prescribed(points, bc, p, vel);
       add_scaled(points.x[p], dt, vel);
     }
   }

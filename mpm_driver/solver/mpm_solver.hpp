@@ -88,9 +88,9 @@ class MpmSolver {
   // The largest stable time step over these points: h / max_p (c_p + |v_p|).
   [[nodiscard]] double stable_time_step(const MaterialPoints& points) const;
   [[nodiscard]] EnergySummary energy(const MaterialPoints& points) const;
-  // Force (eV/Å, summed over this solver's points) that held each
-  // bc.point_velocities entry at its prescribed velocity in the last step:
-  // the reaction a rigid grip or flyer feels.
+  // Force (eV/Å, over the nodes this rank counts) that held each
+  // bc.point_velocities entry's nodes at its prescribed velocity in the
+  // last step: the reaction a rigid grip, piston or flyer feels.
   [[nodiscard]] const std::vector<Vec3>& point_velocity_reactions() const { return reaction_; }
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return patch_.domain; }
@@ -125,6 +125,10 @@ class MpmSolver {
                          const std::vector<Vec3>& v, const std::vector<Mat3>& G, Mat3& L) const;
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
   void update_point_stress(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
+  void sum_rigid();
+  void impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const;
+  void hold_prescribed(const MaterialPoints& points, const BoundaryConditions& bc, size_t p,
+                       Vec3& vel) const;
   void finish_positions(MaterialPoints& points) const;
   double alpha(const MaterialPoints& points, size_t p) const;
 
@@ -137,6 +141,8 @@ class MpmSolver {
   std::vector<NodeSums> node_;
   std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
   std::vector<Vec3> reaction_;
+  std::vector<std::vector<double>> rigid_;  // per point_velocities entry: weight of its points
+  std::vector<char> unique_node_;
   std::vector<Mat3> G_;  // DDMP nodal velocity gradients
   std::vector<std::array<double, 6>> S_;  // DDMP nodal stress moments
   std::unique_ptr<grid::DualDomainOperator> dual_;

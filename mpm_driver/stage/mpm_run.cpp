@@ -131,10 +131,11 @@ void MpmRunStage::run(StageContext& ctx) {
   } else {
     dt = p["time_step"].as<double>();
     if (dt > bound) {
+      const char* unit = metal ? " ps" : "";
       throw Error(fmt::format(
-          "stage '{}': time_step {:.6g} ps exceeds the CFL bound h / max(c + |v|) = {:.6g} ps "
+          "stage '{}': time_step {:.6g}{} exceeds the CFL bound h / max(c + |v|) = {:.6g}{} "
           "(h = {:g}); use a smaller time_step or `time_step: auto`",
-          ctx.stage(), dt, bound, model.grid.cell_size()));
+          ctx.stage(), dt, unit, bound, unit, model.grid.cell_size()));
     }
   }
   const double duration = p["duration"].as<double>();

@@ -30,8 +30,7 @@ struct Pair {
     box.hi = {100.0, 100.0, 100.0};
     box.periodic = {false, false, false};
     particles.mass_per_type = {kMass, 2.0 * kMass};
-    particles.add(id_a, 0, {50.0 + r * e[0], 50.0 + r * e[1], 50.0 + r * e[2]},
-                  {-1.0, 0.5, 0.3});
+    particles.add(id_a, 0, {50.0 + r * e[0], 50.0 + r * e[1], 50.0 + r * e[2]}, {-1.0, 0.5, 0.3});
     particles.add(id_b, 1, {50.0, 50.0, 50.0}, {0.2, -0.4, 1.0});
     list.build(particles, box);
   }
@@ -69,10 +68,10 @@ TEST(DpdPairFriction, RandomForceIsTheSameWhicheverParticleIsStoredFirst) {
   Pair forward(6.0, 7, 3);
   Pair swapped(6.0, 3, 7);
   for (Pair* p : {&forward, &swapped}) p->particles.v.assign(2, {0.0, 0.0, 0.0});
-  add_dissipative_random_forces(forward.particles, forward.particles.v, forward.list, friction,
-                                42, 0.01);
-  add_dissipative_random_forces(swapped.particles, swapped.particles.v, swapped.list, friction,
-                                42, 0.01);
+  add_dissipative_random_forces(forward.particles, forward.particles.v, forward.list, friction, 42,
+                                0.01);
+  add_dissipative_random_forces(swapped.particles, swapped.particles.v, swapped.list, friction, 42,
+                                0.01);
   for (int a = 0; a < 3; ++a) EXPECT_EQ(forward.particles.f[0][a], swapped.particles.f[0][a]);
 }
 
@@ -111,7 +110,8 @@ TEST(DpdShardlowSweep, ConservesMomentumAndDecaysTheApproachSpeedAsTheExactFrict
   const Vec3 momentum = total_momentum(pair.particles);
   const double w0 = pair.approach_speed();
   const int steps = 100;
-  for (int step = 0; step < steps; ++step) shardlow_sweep(pair.particles, pair.list, friction, step, dt);
+  for (int step = 0; step < steps; ++step)
+    shardlow_sweep(pair.particles, pair.list, friction, step, dt);
   const double reduced_mass = kMass * 2.0 * kMass / (3.0 * kMass);
   const double w_d = (1.0 - r / kCutoff) * (1.0 - r / kCutoff);
   const double exact = w0 * std::exp(-gamma * w_d * steps * dt / reduced_mass);
@@ -120,7 +120,7 @@ TEST(DpdShardlowSweep, ConservesMomentumAndDecaysTheApproachSpeedAsTheExactFrict
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(after[a], momentum[a], 1e-12 * kMass);
 }
 
-TEST(DpdShardlowSweep, DpdeMovesEveryJouleOfKineticEnergyIntoTheInternalEnergies) {
+TEST(DpdShardlowSweep, DpdeMovesAllTheKineticEnergyItTakesIntoTheInternalEnergies) {
   Pair pair(5.2);
   const double heat_capacity = 21.0 * kBoltzmann;
   pair.particles.internal_energy = {heat_capacity * 250.0, heat_capacity * 400.0};
