@@ -99,8 +99,9 @@ int main() {
   const double stream = stream_triad_bytes_per_s();
   const double fraction = bytes_per_step * steps / elapsed / stream;
 
-  std::printf("# %zu points, %d steps in %.3f s; %.0f bytes per point-step; STREAM triad %.2f GB/s\n",
-              pts.size(), steps, elapsed, bytes_per_step / np, stream / 1e9);
+  std::printf(
+      "# %zu points, %d steps in %.3f s; %.0f bytes per point-step; STREAM triad %.2f GB/s\n",
+      pts.size(), steps, elapsed, bytes_per_step / np, stream / 1e9);
   // Final-state checksums (not timed): compare before/after a change to
   // check that the physics stayed within round-off.
   {

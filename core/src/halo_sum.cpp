@@ -7,7 +7,9 @@ namespace {
 
 // Tags tell apart several blocks shared with one rank (two periodic images
 // of a two-box axis): the shift as a base-3 number.
-int tag_of(const std::array<int, 3>& s) { return 100 + (s[0] + 1) + 3 * (s[1] + 1) + 9 * (s[2] + 1); }
+int tag_of(const std::array<int, 3>& s) {
+  return 100 + (s[0] + 1) + 3 * (s[1] + 1) + 9 * (s[2] + 1);
+}
 
 template <typename F>
 void for_each_node(const grid::NodeBox& box, F&& f) {
@@ -45,8 +47,9 @@ void HaloSum::sum(double* data, int components, int stride) {
     recv_[o].resize(buf.size());
     const int n = static_cast<int>(buf.size());
     const std::array<int, 3> back{-ov.shift[0], -ov.shift[1], -ov.shift[2]};
-    check(MPI_Irecv(recv_[o].data(), n, MPI_DOUBLE, ov.rank, tag_of(back), comm_, &requests_[2 * o]),
-          "MPI_Irecv (halo)");
+    check(
+        MPI_Irecv(recv_[o].data(), n, MPI_DOUBLE, ov.rank, tag_of(back), comm_, &requests_[2 * o]),
+        "MPI_Irecv (halo)");
     check(MPI_Isend(buf.data(), n, MPI_DOUBLE, ov.rank, tag_of(ov.shift), comm_,
                     &requests_[2 * o + 1]),
           "MPI_Isend (halo)");

@@ -28,9 +28,8 @@ Param materials_schema() {
           .at_most(0.49),
   };
   std::vector<Param> j2_fields = elastic_fields;
-  j2_fields.push_back(Param::real("yield_stress", Dimension::kPressure, "Initial yield stress")
-                          .require()
-                          .above(0));
+  j2_fields.push_back(
+      Param::real("yield_stress", Dimension::kPressure, "Initial yield stress").require().above(0));
   j2_fields.push_back(
       Param::real("hardening_modulus", Dimension::kPressure, "Linear isotropic hardening modulus H")
           .def(0.0)

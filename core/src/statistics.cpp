@@ -63,9 +63,10 @@ double oscillation_period(const std::vector<double>& t, const std::vector<double
     if (a < 0.0 && b >= 0.0) up.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-a) / (b - a));
   }
   if (up.size() < 2) {
-    throw Error(fmt::format("oscillation_period: the signal crosses its mean upwards {} time(s); "
-                            "run longer or sample more often",
-                            up.size()));
+    throw Error(
+        fmt::format("oscillation_period: the signal crosses its mean upwards {} time(s); "
+                    "run longer or sample more often",
+                    up.size()));
   }
   return (up.back() - up.front()) / static_cast<double>(up.size() - 1);
 }

@@ -29,11 +29,27 @@ std::unique_ptr<Material> LinearElastic::create(const MaterialParameters& params
   return std::make_unique<LinearElastic>(e, nu);
 }
 
-void LinearElastic::update(const Mat3& velocity_gradient, double dt,
-                           MaterialPointState& state) const {
+namespace {
+
+[[gnu::always_inline]] inline void update_one(const IsotropicElasticity& elasticity,
+                                              const Mat3& velocity_gradient, double dt,
+                                              MaterialPointState& state) {
   const SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
   state.stress = rotated(state.stress, hughes_winget_rotation(velocity_gradient, dt)) +
-                 elasticity_.stress_for(strain_increment);
+                 elasticity.stress_for(strain_increment);
+}
+
+}  // namespace
+
+void LinearElastic::update(const Mat3& velocity_gradient, double dt,
+                           MaterialPointState& state) const {
+  update_one(elasticity_, velocity_gradient, dt, state);
+}
+
+void LinearElastic::update_many(const Mat3* velocity_gradients, double dt,
+                                MaterialPointState* states, std::size_t n) const {
+  const IsotropicElasticity elasticity = elasticity_;
+  for (std::size_t i = 0; i < n; ++i) update_one(elasticity, velocity_gradients[i], dt, states[i]);
 }
 
 double LinearElastic::wave_speed(const MaterialPointState& state) const {

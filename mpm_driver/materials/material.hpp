@@ -6,6 +6,7 @@
 // (g/mol)/(Å ps^2) for wave_speed to come out in Å/ps.
 #pragma once
 
+#include <cstddef>
 #include <string_view>
 
 #include "material_point_state.hpp"
@@ -28,6 +29,15 @@ class Material {
   // MaterialPointState); on exit state.stress is the end-of-step stress.
   virtual void update(const Mat3& velocity_gradient, double dt,
                       MaterialPointState& state) const = 0;
+
+  // update() for n points in a row: states[i] over velocity_gradients[i].
+  // The solver calls this for runs of points of one material, which keeps
+  // the virtual call out of the per-point loop; a material may override it
+  // with an inlined loop, which must give the same result as update().
+  virtual void update_many(const Mat3* velocity_gradients, double dt, MaterialPointState* states,
+                           std::size_t n) const {
+    for (std::size_t i = 0; i < n; ++i) update(velocity_gradients[i], dt, states[i]);
+  }
 
   // Fastest signal speed in the material at this state, for the CFL bound
   // dt < h / (c + |v|).

@@ -6,12 +6,15 @@
 #include <fmt/format.h>
 
 #include "pbms/error.hpp"
+#include "pbms/grid/shape_function_linear.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
 namespace {
 
-inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
+inline Vec3 operator*(double s, const Vec3& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
 inline void add_to(Vec3& a, const Vec3& b) {
   a[0] += b[0];
   a[1] += b[1];
@@ -22,7 +25,9 @@ inline void add_scaled(Vec3& a, double s, const Vec3& b) {
   a[1] += s * b[1];
   a[2] += s * b[2];
 }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 grid::RegularGrid patch_grid(const GridPatch& patch) {
   const auto& d = patch.domain;
@@ -36,9 +41,37 @@ grid::RegularGrid patch_grid(const GridPatch& patch) {
   return grid::RegularGrid(origin, d.cell_size(), {e[0] - 1, e[1] - 1, e[2] - 1});
 }
 
+// Shape-function evaluation for the particle passes. The generic one goes
+// through the style's virtual evaluate(); the linear one is chosen once per
+// step and inlines a fixed 8-node stencil. Both leave the inside check to
+// the caller.
+// The generic one fills one buffer and returns it; the linear one returns
+// its stencil by value, which after inlining lives in registers and drops
+// what a pass does not read (the gradients in the G2P pass).
+struct GenericEval {
+  const grid::ShapeFunction& shape;
+  const grid::RegularGrid& grid;
+  mutable grid::ShapeStencil buffer;
+  const grid::ShapeStencil& operator()(const Vec3& x) const {
+    shape.evaluate(grid, x, buffer);
+    return buffer;
+  }
+};
+
+struct LinearEval {
+  grid::ShapeFunctionLinear::Kernel kernel;
+  grid::LinearStencil operator()(const Vec3& x) const {
+    grid::LinearStencil s;
+    kernel(x, s);
+    return s;
+  }
+};
+
 }  // namespace
 
-UnitSystem UnitSystem::metal() { return {1.0 / units::kBarPerEvPerA3, 1.0 / units::kMvv2e}; }
+UnitSystem UnitSystem::metal() {
+  return {1.0 / units::kBarPerEvPerA3, 1.0 / units::kMvv2e};
+}
 
 MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape,
                      std::vector<std::unique_ptr<Material>> materials, SolverOptions options)
@@ -79,11 +112,30 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape
 void MpmSolver::evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const {
   const Vec3& x = points.x[p];
   if (!local_.contains(x)) {
-    throw Error(fmt::format("material point {} at ({:.6g}, {:.6g}, {:.6g}) is outside {}",
-                            points.id[p], x[0], x[1], x[2],
-                            patch_.domain.contains(x) ? "this rank's box of the grid" : "the grid"));
+    throw Error(fmt::format(
+        "material point {} at ({:.6g}, {:.6g}, {:.6g}) is outside {}", points.id[p], x[0], x[1],
+        x[2], patch_.domain.contains(x) ? "this rank's box of the grid" : "the grid"));
   }
   shape_->evaluate(local_, x, s);
+}
+
+// RegularGrid::contains, inline; NaN compares as outside.
+[[gnu::always_inline]] inline bool MpmSolver::inside(const Vec3& x) const {
+  const auto& lo = local_.origin();
+  const auto& hi = local_.upper();
+  return x[0] >= lo[0] && x[0] <= hi[0] && x[1] >= lo[1] && x[1] <= hi[1] && x[2] >= lo[2] &&
+         x[2] <= hi[2];
+}
+
+template <class Eval>
+[[gnu::always_inline]] inline decltype(auto) MpmSolver::locate(const Eval& eval,
+                                                               const MaterialPoints& points,
+                                                               size_t p) const {
+  if (!inside(points.x[p])) [[unlikely]] {
+    grid::ShapeStencil unused;
+    evaluate(points, p, unused);  // throws, naming the point
+  }
+  return eval(points.x[p]);
 }
 
 double MpmSolver::alpha(const MaterialPoints& points, size_t p) const {
@@ -98,8 +150,9 @@ void MpmSolver::sum_shared(double* first, int components) {
 // Mass, and optionally momentum and the internal and external forces, of
 // every point to its nodes (s-1 to s-4). The forces use the stress the
 // points carry now, which under update-stress-last is the previous step's.
-void MpmSolver::scatter(const MaterialPoints& points, const BoundaryConditions& bc,
-                        bool momentum, bool force) {
+template <class Eval>
+void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
+                        const BoundaryConditions& bc, bool momentum, bool force) {
   std::fill(node_.begin(), node_.end(), NodeSums{});
   rigid_.assign(bc.point_velocities.size(), std::vector<double>(node_.size(), 0.0));
   const bool dual = force && opt_.ddmp;
@@ -107,9 +160,32 @@ void MpmSolver::scatter(const MaterialPoints& points, const BoundaryConditions& 
   const double kv = opt_.units.stress_volume_to_energy;
   const double kf = opt_.units.force_per_mass_to_accel;
   const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
-  grid::ShapeStencil s;
+  if (momentum && force && !dual && !body && bc.loads.empty() && bc.point_velocities.empty()) {
+    // The common case without external forces, rigid groups or DDMP: the
+    // loop below with its rarely taken branches left out (alpha is 1 and
+    // the external force 0).
+    for (size_t p = 0; p < points.size(); ++p) {
+      const auto& s = locate(eval, points, p);
+      const double m = points.mass[p];
+      const Vec3& v = points.v[p];
+      const double w = points.volume(p) * kv;
+      const auto& t = points.state[p].stress.voigt;  // xx yy zz yz xz xy
+      for (int q = 0; q < s.count; ++q) {
+        const auto qq = static_cast<size_t>(q);
+        NodeSums& nd = node_[static_cast<size_t>(s.node[qq])];
+        const double Nm = s.N[qq] * m;
+        nd.mass += Nm;
+        add_scaled(nd.momentum, Nm, v);
+        const auto& g = s.dN[qq];
+        nd.force[0] -= w * (t[0] * g[0] + t[5] * g[1] + t[4] * g[2]);
+        nd.force[1] -= w * (t[5] * g[0] + t[1] * g[1] + t[3] * g[2]);
+        nd.force[2] -= w * (t[4] * g[0] + t[3] * g[1] + t[2] * g[2]);
+      }
+    }
+    return;
+  }
   for (size_t p = 0; p < points.size(); ++p) {
-    evaluate(points, p, s);
+    const auto& s = locate(eval, points, p);
     const double m = points.mass[p];
     const Vec3& v = points.v[p];
     Vec3 fext{0.0, 0.0, 0.0};
@@ -208,9 +284,12 @@ void MpmSolver::nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G)
   }
 }
 
-void MpmSolver::velocity_gradient(const MaterialPoints& points, size_t p,
-                                  const grid::ShapeStencil& s, const std::vector<Vec3>& v,
-                                  const std::vector<Mat3>& G, Mat3& L) const {
+template <class Stencil>
+[[gnu::always_inline]] inline void MpmSolver::velocity_gradient(const MaterialPoints& points,
+                                                                size_t p, const Stencil& s,
+                                                                const std::vector<Vec3>& v,
+                                                                const std::vector<Mat3>& G,
+                                                                Mat3& L) const {
   const double al = alpha(points, p);
   double l[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   for (int q = 0; q < s.count; ++q) {
@@ -233,25 +312,30 @@ void MpmSolver::velocity_gradient(const MaterialPoints& points, size_t p,
   }
 }
 
-void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3& L,
-                                    double dt) const {
-  const double power_before =
-      double_contraction(points.state[p].stress, SymmetricTensor::from_matrix(0.5 * (L + L.transpose()))) *
-      points.volume(p);
+// F <- (I + dt L) F and the density from det F; returns det F. Throws if
+// the point inverted.
+[[gnu::always_inline]] inline double MpmSolver::update_deformation(MaterialPoints& points, size_t p,
+                                                                   const Mat3& L, double dt) const {
   points.F[p] = (Mat3::Identity() + dt * L) * points.F[p];
   const double J = points.F[p].determinant();
-  if (!(J > 0.0)) {
+  if (!(J > 0.0)) [[unlikely]] {
     throw Error(fmt::format(
         "material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted (det F = {:.3g}): the time "
         "step is too large or the material failed",
         points.id[p], points.x[p][0], points.x[p][1], points.x[p][2], J));
   }
   points.state[p].density = points.mass[p] / (points.volume0[p] * J);
+  return J;
+}
+
+void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3& L,
+                                    double dt) const {
+  const SymmetricTensor D = SymmetricTensor::from_matrix(0.5 * (L + L.transpose()));
+  const double power_before = double_contraction(points.state[p].stress, D) * points.volume(p);
+  const double J = update_deformation(points, p, L, dt);
   materials_[static_cast<size_t>(points.material[p])]->update(L, dt, points.state[p]);
   // Stress power sigma : D V, by the trapezoidal rule over the step.
-  const double power_after =
-      double_contraction(points.state[p].stress, SymmetricTensor::from_matrix(0.5 * (L + L.transpose()))) *
-      points.volume0[p] * J;
+  const double power_after = double_contraction(points.state[p].stress, D) * points.volume0[p] * J;
   points.work[p] += 0.5 * dt * (power_before + power_after) * opt_.units.stress_volume_to_energy;
 }
 
@@ -313,31 +397,46 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
   double ref = opt_.reference_point_mass;
   if (ref <= 0.0 && n > 0) ref = *std::min_element(points.mass.begin(), points.mass.end());
   mass_floor_ = ref * opt_.small_mass_fraction;
+  if (opt_.ddmp && n > 0)
+    dual_ = std::make_unique<grid::DualDomainOperator>(local_, *shape_, points.x);
+  // The linear style runs an inlined fixed stencil; any other style goes
+  // through its virtual evaluate(), with the same passes.
+  if (dynamic_cast<const grid::ShapeFunctionLinear*>(shape_.get()) != nullptr) {
+    step_passes(LinearEval{grid::ShapeFunctionLinear::Kernel(local_)}, points, bc, dt);
+  } else {
+    step_passes(GenericEval{*shape_, local_, {}}, points, bc, dt);
+  }
+  finish_positions(points);
+}
+
+template <class Eval>
+void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
+                            double dt) {
+  const size_t n = points.size();
   const double kf = opt_.units.force_per_mass_to_accel;
   const bool last = opt_.stress_update == StressUpdate::kLast;
-  if (opt_.ddmp && n > 0) dual_ = std::make_unique<grid::DualDomainOperator>(local_, *shape_, points.x);
-  grid::ShapeStencil s;
+  const bool prescribed = !bc.point_velocities.empty();
   Mat3 L;
 
   if (last) {
-    scatter(points, bc, true, true);  // s-1 to s-4
+    scatter(eval, points, bc, true, true);  // s-1 to s-4
     sum_shared(&node_[0].mass, 7);
     sum_rigid();
   } else {
     // Update-stress-first: the gradient of the mapped velocity updates the
     // stress before it makes the internal force.
-    scatter(points, bc, true, false);
+    scatter(eval, points, bc, true, false);
     sum_shared(&node_[0].mass, 4);
     sum_rigid();
     nodal_velocities(bc, velocity_);
     impose_rigid(bc, velocity_);
     if (opt_.ddmp) nodal_gradient(velocity_, G_);
     for (size_t p = 0; p < n; ++p) {
-      evaluate(points, p, s);
+      const auto& s = locate(eval, points, p);
       velocity_gradient(points, p, s, velocity_, G_, L);
       update_point_stress(points, p, L, dt);
     }
-    scatter(points, bc, true, true);
+    scatter(eval, points, bc, true, true);
     sum_shared(&node_[0].mass, 7);
     sum_rigid();
   }
@@ -377,15 +476,17 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
   }
   for (size_t i = 0; i < node_.size(); ++i) {
     if (node_[i].mass > mass_floor_) {
-      for (size_t a = 0; a < 3; ++a) acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
+      for (size_t a = 0; a < 3; ++a)
+        acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
     }
   }
 
   // Grid to points (s-7), and under update-stress-last the remap of the new
   // point momenta with this step's shape functions (s-10) in the same pass.
   for (auto& nd : node_) nd.momentum = {0.0, 0.0, 0.0};
+  const double flip = opt_.flip;
   for (size_t p = 0; p < n; ++p) {
-    evaluate(points, p, s);
+    const auto& s = locate(eval, points, p);
     Vec3 acc{0, 0, 0}, vel{0, 0, 0};
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
@@ -395,48 +496,80 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
     }
     Vec3& vp = points.v[p];
     for (size_t a = 0; a < 3; ++a) {
-      vp[a] = opt_.flip * (vp[a] + dt * acc[a]) + (1.0 - opt_.flip) * vel[a];
+      vp[a] = flip * (vp[a] + dt * acc[a]) + (1.0 - flip) * vel[a];
     }
-    for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
-      const auto& pv = bc.point_velocities[c];
-      if (!points.in_group(p, pv.group_mask)) continue;
-      for (size_t a = 0; a < 3; ++a) {
-        if (!pv.axis[a]) continue;
-        vp[a] = pv.velocity[a];
+    if (prescribed) {
+      for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+        const auto& pv = bc.point_velocities[c];
+        if (!points.in_group(p, pv.group_mask)) continue;
+        for (size_t a = 0; a < 3; ++a) {
+          if (!pv.axis[a]) continue;
+          vp[a] = pv.velocity[a];
+        }
       }
     }
     if (last) {
+      const double m = points.mass[p];
       for (int q = 0; q < s.count; ++q) {
         const auto qq = static_cast<size_t>(q);
-        add_scaled(node_[static_cast<size_t>(s.node[qq])].momentum, s.N[qq] * points.mass[p], vp);
+        add_scaled(node_[static_cast<size_t>(s.node[qq])].momentum, s.N[qq] * m, vp);
       }
     } else {
-      hold_prescribed(points, bc, p, vel);
+      if (prescribed) hold_prescribed(points, bc, p, vel);
       add_scaled(points.x[p], dt, vel);  // s-8
     }
   }
 
-  if (last) {
-    sum_shared(&node_[0].momentum[0], 3);
-    nodal_velocities(bc, remap_velocity_);  // s-11
-    impose_rigid(bc, remap_velocity_);
-    if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
-    // Stress update (s-12 to s-14) at the positions the step started from,
-    // then the move with the momentum-update velocity (s-8).
-    for (size_t p = 0; p < n; ++p) {
-      evaluate(points, p, s);
-      velocity_gradient(points, p, s, remap_velocity_, G_, L);
+  if (!last) return;
+  sum_shared(&node_[0].momentum[0], 3);
+  nodal_velocities(bc, remap_velocity_);  // s-11
+  impose_rigid(bc, remap_velocity_);
+  if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
+  // Stress update (s-12 to s-14) at the positions the step started from,
+  // then the move with the momentum-update velocity (s-8). Blocks of points:
+  // kinematics per point, then one material call per run of points of one
+  // material, then the stress power and the move; the result is that of
+  // update_point_stress point by point.
+  constexpr size_t kBlock = 64;
+  std::array<Mat3, kBlock> Lb;
+  std::array<SymmetricTensor, kBlock> Db;
+  std::array<double, kBlock> power_before, Jb;
+  std::array<Vec3, kBlock> vb;
+  const double kv = opt_.units.stress_volume_to_energy;
+  for (size_t p0 = 0; p0 < n; p0 += kBlock) {
+    const size_t m = std::min(kBlock, n - p0);
+    for (size_t i = 0; i < m; ++i) {
+      const size_t p = p0 + i;
+      const auto& s = locate(eval, points, p);
+      velocity_gradient(points, p, s, remap_velocity_, G_, Lb[i]);
       Vec3 vel{0, 0, 0};
       for (int q = 0; q < s.count; ++q) {
         const auto qq = static_cast<size_t>(q);
         add_scaled(vel, s.N[qq], velocity_[static_cast<size_t>(s.node[qq])]);
       }
-      update_point_stress(points, p, L, dt);
-      hold_prescribed(points, bc, p, vel);
-      add_scaled(points.x[p], dt, vel);
+      vb[i] = vel;
+      const Mat3& Lp = Lb[i];
+      Db[i] = SymmetricTensor::from_matrix(0.5 * (Lp + Lp.transpose()));
+      power_before[i] = double_contraction(points.state[p].stress, Db[i]) * points.volume(p);
+      Jb[i] = update_deformation(points, p, Lp, dt);
+    }
+    for (size_t i = 0; i < m;) {
+      const int mat = points.material[p0 + i];
+      size_t j = i + 1;
+      while (j < m && points.material[p0 + j] == mat) ++j;
+      materials_[static_cast<size_t>(mat)]->update_many(&Lb[i], dt, &points.state[p0 + i], j - i);
+      i = j;
+    }
+    for (size_t i = 0; i < m; ++i) {
+      const size_t p = p0 + i;
+      // Stress power sigma : D V, by the trapezoidal rule over the step.
+      const double power_after =
+          double_contraction(points.state[p].stress, Db[i]) * points.volume0[p] * Jb[i];
+      points.work[p] += 0.5 * dt * (power_before[i] + power_after) * kv;
+      if (prescribed) hold_prescribed(points, bc, p, vb[i]);
+      add_scaled(points.x[p], dt, vb[i]);
     }
   }
-  finish_positions(points);
 }
 
 double MpmSolver::stable_time_step(const MaterialPoints& points) const {

@@ -114,16 +114,29 @@ class MpmSolver {
     Vec3 force{0.0, 0.0, 0.0};
   };
 
+  // The particle passes of one step, over a shape-function evaluator (the
+  // generic virtual one, or an inlined one for a known style).
+  template <class Eval>
+  void step_passes(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
+                   double dt);
+  // Throws, naming the point, if it is outside this solver's box.
   void evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const;
+  [[nodiscard]] bool inside(const Vec3& x) const;
+  // The stencil of point p (a reference or a value, by evaluator).
+  template <class Eval>
+  decltype(auto) locate(const Eval& eval, const MaterialPoints& points, size_t p) const;
   void sum_shared(double* first, int components);
-  void scatter(const MaterialPoints& points, const BoundaryConditions& bc, bool momentum,
-               bool force);
+  template <class Eval>
+  void scatter(const Eval& eval, const MaterialPoints& points, const BoundaryConditions& bc,
+               bool momentum, bool force);
   void nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const;
   void apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
                               bool is_velocity) const;
-  void velocity_gradient(const MaterialPoints& points, size_t p, const grid::ShapeStencil& s,
+  template <class Stencil>
+  void velocity_gradient(const MaterialPoints& points, size_t p, const Stencil& s,
                          const std::vector<Vec3>& v, const std::vector<Mat3>& G, Mat3& L) const;
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
+  double update_deformation(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
   void update_point_stress(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
   void sum_rigid();
   void impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const;
@@ -143,7 +156,7 @@ class MpmSolver {
   std::vector<Vec3> reaction_;
   std::vector<std::vector<double>> rigid_;  // per point_velocities entry: weight of its points
   std::vector<char> unique_node_;
-  std::vector<Mat3> G_;  // DDMP nodal velocity gradients
+  std::vector<Mat3> G_;                   // DDMP nodal velocity gradients
   std::vector<std::array<double, 6>> S_;  // DDMP nodal stress moments
   std::unique_ptr<grid::DualDomainOperator> dual_;
 };

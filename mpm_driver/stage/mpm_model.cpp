@@ -103,8 +103,8 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
   m.shape_function = params["shape_function"].as<std::string>();
 
   SolverOptions& o = m.options;
-  o.stress_update =
-      params["stress_update"].as<std::string>() == "first" ? StressUpdate::kFirst : StressUpdate::kLast;
+  o.stress_update = params["stress_update"].as<std::string>() == "first" ? StressUpdate::kFirst
+                                                                         : StressUpdate::kLast;
   o.flip = params["flip"].as<double>();
   o.ddmp = params["gradient"].as<std::string>() == "ddmp";
   o.ddmp_face_vanishing = params["ddmp_blend"].as<std::string>() == "face_vanishing";
@@ -139,7 +139,8 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
     const auto name = b["name"].as<std::string>();
     const auto mat_name = b["material"].as<std::string>();
     const auto it = std::find(materials.names.begin(), materials.names.end(), mat_name);
-    if (it == materials.names.end()) throw Error(fmt::format("body '{}': unknown material '{}'", name, mat_name));
+    if (it == materials.names.end())
+      throw Error(fmt::format("body '{}': unknown material '{}'", name, mat_name));
     const int mat = static_cast<int>(it - materials.names.begin());
     const Material& model = *materials.models[static_cast<size_t>(mat)];
     const auto region = region_from_yaml(b["region"]);
@@ -150,7 +151,8 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       throw Error(fmt::format("body '{}': its region holds no material point of the grid", name));
     }
     const double pressure = b["pressure"].as<double>();
-    const MaterialPointState s0 = model.initial_state(materials.density[static_cast<size_t>(mat)], pressure);
+    const MaterialPointState s0 =
+        model.initial_state(materials.density[static_cast<size_t>(mat)], pressure);
     const Vec3 v0 = vec3(b["velocity"]);
     const YAML::Node mode = b["axial_mode"];
     const uint32_t body_bit = 1u << (region_groups + body_index);
@@ -223,7 +225,8 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       const auto count = m.group_sizes[static_cast<size_t>(std::countr_zero(load.group_mask))];
       if (count == 0) throw Error(fmt::format("group '{}' has no material point to load", group));
       const Vec3 total = vec3(c["force"]);
-      for (size_t a = 0; a < 3; ++a) load.force_per_point[a] = total[a] / static_cast<double>(count);
+      for (size_t a = 0; a < 3; ++a)
+        load.force_per_point[a] = total[a] / static_cast<double>(count);
       m.bc.loads.push_back(load);
     }
   }

@@ -52,9 +52,10 @@ MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal
         if (model.point_velocity_groups[k] == group) p.point_velocity = static_cast<int>(k);
       }
       if (p.point_velocity < 0) {
-        throw Error(fmt::format("probe '{}': group '{}' has no group_velocity condition whose "
-                                "reaction it could report",
-                                p.name, group));
+        throw Error(
+            fmt::format("probe '{}': group '{}' has no group_velocity condition whose "
+                        "reaction it could report",
+                        p.name, group));
       }
       for (const char* c : xyz) add(c, force);
       n_sums_ += 3;
@@ -154,6 +155,8 @@ std::vector<double> MpmProbes::values(const std::vector<double>& sums,
   return out;
 }
 
-void MpmProbes::set_reference(const std::vector<double>& values) { reference_ = values; }
+void MpmProbes::set_reference(const std::vector<double>& values) {
+  reference_ = values;
+}
 
 }  // namespace pbms::mpm

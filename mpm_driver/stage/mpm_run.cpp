@@ -61,7 +61,8 @@ std::vector<double> sorted_rows(const std::vector<double>& rows, size_t width) {
             [&](size_t a, size_t b) { return rows[a * width] < rows[b * width]; });
   std::vector<double> out;
   out.reserve(rows.size());
-  for (const size_t i : order) out.insert(out.end(), rows.begin() + i * width, rows.begin() + (i + 1) * width);
+  for (const size_t i : order)
+    out.insert(out.end(), rows.begin() + i * width, rows.begin() + (i + 1) * width);
   return out;
 }
 
@@ -248,8 +249,9 @@ void MpmRunStage::run(StageContext& ctx) {
           }
         }
       }
-      grid_out->write_frame(step, t, {{"mass", metal ? "g/mol" : "1", 1, mass.data()},
-                                      {"velocity", metal ? "Å/ps" : "1", 3, vel.data()}});
+      grid_out->write_frame(step, t,
+                            {{"mass", metal ? "g/mol" : "1", 1, mass.data()},
+                             {"velocity", metal ? "Å/ps" : "1", 3, vel.data()}});
     }
   };
 
@@ -376,8 +378,8 @@ void MpmRunStage::run(StageContext& ctx) {
       r.add_scalar("rms_ratio_mpm_over_ddmp", wf["rms_reference"].as<double>() / rms, "1");
     }
     if (wf["variation_reference"]) {
-      r.add_scalar("variation_ratio_mpm_over_ddmp", wf["variation_reference"].as<double>() / variation,
-                   "1");
+      r.add_scalar("variation_ratio_mpm_over_ddmp",
+                   wf["variation_reference"].as<double>() / variation, "1");
     }
     r.add_column("front", "time", time_unit, front_t);
     r.add_column("front", "distance", metal ? "Å" : "1", front_s);
@@ -393,8 +395,8 @@ void MpmRunStage::run(StageContext& ctx) {
     r.attributes["profile_time"] = fmt::format("{:.10g}", profile_t_done);
   }
   r.attributes["gradient"] = p["gradient"].as<std::string>();
-  r.attributes["decomposition"] = fmt::format("{}x{}x{}", partition.dims()[0],
-                                              partition.dims()[1], partition.dims()[2]);
+  r.attributes["decomposition"] =
+      fmt::format("{}x{}x{}", partition.dims()[0], partition.dims()[1], partition.dims()[2]);
   if (h5md) r.files.push_back((std::filesystem::path(ctx.stage()) / "particles.h5md").string());
   if (grid_out) {
     r.files.push_back((std::filesystem::path(ctx.stage()) / "grid.h5").string());

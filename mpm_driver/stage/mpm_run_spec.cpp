@@ -33,8 +33,8 @@ Param region_param(const std::string& name, const std::string& doc) {
       .variant("cylinder", cylinder, "Axis-aligned circular cylinder");
   Param r = Param::map(
       name,
-      {Param::choice("style", {"block", "sphere", "cylinder", "union", "intersection", "difference"},
-                     "Shape")
+      {Param::choice(
+           "style", {"block", "sphere", "cylinder", "union", "intersection", "difference"}, "Shape")
            .require()},
       doc);
   const std::vector<Param> composite = {
@@ -73,7 +73,9 @@ config::StageKindSpec MpmRunStage::spec() {
           Param::real_list("origin", Dimension::kLength, "Lower corner of the grid")
               .def(std::vector<double>{0.0, 0.0, 0.0})
               .length(3, 3),
-          Param::real("cell_size", Dimension::kLength, "Edge h of the cubic cells").require().above(0),
+          Param::real("cell_size", Dimension::kLength, "Edge h of the cubic cells")
+              .require()
+              .above(0),
           Param::int_list("cells", "Cells along x, y, z").require().length(3, 3).at_least(1),
           Param::list_of("periodic", Param::choice("axis", {"x", "y", "z"}, "An axis"),
                          "Periodic axes; the others are closed by the grid's faces")
@@ -97,7 +99,8 @@ config::StageKindSpec MpmRunStage::spec() {
           Param::identifier("name", "Body name; also a group of its points").require(),
           Param::identifier("material", "Material of the body").require().material(),
           region_param("region", "Region the body fills").require(),
-          Param::int_list("points_per_cell", "Material points per cell and axis: one number or x, y, z")
+          Param::int_list("points_per_cell",
+                          "Material points per cell and axis: one number or x, y, z")
               .def(std::vector<int>{2})
               .length(1, 3)
               .at_least(1),
@@ -111,12 +114,14 @@ config::StageKindSpec MpmRunStage::spec() {
   const Param group = Param::map(
       "group",
       {Param::identifier("name", "Group name").require(),
-       region_param("region", "The group holds the points inside this region at the start").require()},
+       region_param("region", "The group holds the points inside this region at the start")
+           .require()},
       "A named set of points");
 
   Param bc = Param::map(
       "condition",
-      {Param::choice("kind", {"nodes", "group_velocity", "group_force"}, "What is prescribed").require()},
+      {Param::choice("kind", {"nodes", "group_velocity", "group_force"}, "What is prescribed")
+           .require()},
       "One boundary condition");
   bc.discriminated_by("kind")
       .variant("nodes",
@@ -144,15 +149,15 @@ config::StageKindSpec MpmRunStage::spec() {
                     .length(3, 3)},
                "A constant external force on a group");
 
-  Param probe = Param::map(
-      "probe",
-      {Param::identifier("name", "Column prefix in the probes table").require(),
-       Param::choice("kind",
-                     {"energy", "momentum", "mean_stress", "slab_displacement", "group_force",
-                      "group_extent", "group_volume"},
-                     "What is sampled")
-           .require()},
-      "A quantity sampled every sample_every steps");
+  Param probe =
+      Param::map("probe",
+                 {Param::identifier("name", "Column prefix in the probes table").require(),
+                  Param::choice("kind",
+                                {"energy", "momentum", "mean_stress", "slab_displacement",
+                                 "group_force", "group_extent", "group_volume"},
+                                "What is sampled")
+                      .require()},
+                 "A quantity sampled every sample_every steps");
   probe.discriminated_by("kind")
       .variant("energy", {}, "Kinetic, stored (strain or internal), dissipated and total energy")
       .variant("momentum", {}, "Total momentum")
@@ -207,7 +212,8 @@ config::StageKindSpec MpmRunStage::spec() {
                     "With ddmp: pure dual-domain gradients, or blended with the plain ones by "
                     "4 xi (1 - xi) per axis as in the seed")
           .def(std::string("none")),
-      Param::choice("stress_update", {"last", "first"}, "When the stress is updated").def(std::string("last")),
+      Param::choice("stress_update", {"last", "first"}, "When the stress is updated")
+          .def(std::string("last")),
       Param::real("flip", Dimension::kNone, "FLIP fraction of the velocity update: 1 FLIP, 0 PIC")
           .def(1.0)
           .at_least(0)
@@ -238,7 +244,9 @@ config::StageKindSpec MpmRunStage::spec() {
       Param::integer("particles_every", "Steps between H5MD particle frames; 0 writes none")
           .def(0)
           .at_least(0),
-      Param::integer("grid_every", "Steps between XDMF grid frames; 0 writes none").def(0).at_least(0),
+      Param::integer("grid_every", "Steps between XDMF grid frames; 0 writes none")
+          .def(0)
+          .at_least(0),
       wave_front,
       Param::string("period_of",
                     "A probe column (e.g. tip.x); its oscillation period is reported as `period`"),
@@ -261,7 +269,8 @@ config::StageKindSpec MpmRunStage::spec() {
        "Total variation of the profile beyond the exact one's jumps (wave_front)"},
       {"variation_ratio_mpm_over_ddmp", OutputSpec::Shape::kScalar, "1",
        "variation_reference / excess_variation (wave_front)"},
-      {"exact_wave_speed", OutputSpec::Shape::kScalar, "Å/ps", "sqrt(M / rho) of the bar (wave_front)"},
+      {"exact_wave_speed", OutputSpec::Shape::kScalar, "Å/ps",
+       "sqrt(M / rho) of the bar (wave_front)"},
       {"period", OutputSpec::Shape::kScalar, "ps", "Oscillation period of period_of"},
       {"probes", OutputSpec::Shape::kTable, "", "Probe samples"},
       {"profile", OutputSpec::Shape::kTable, "", "Stress profile and exact solution (wave_front)"},

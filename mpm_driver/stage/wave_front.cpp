@@ -7,7 +7,9 @@
 
 namespace pbms::mpm {
 
-double StepLoadedBar::length() const { return std::abs(loaded_end - fixed_end); }
+double StepLoadedBar::length() const {
+  return std::abs(loaded_end - fixed_end);
+}
 
 double StepLoadedBar::exact_stress(double x, double t) const {
   const double L = length();

@@ -46,8 +46,7 @@ struct StepLoadedBar {
 // dispersive ringing; taken late (0.8 L/c) it spans several wavelengths of
 // the ringing that trails the front, which then averages out.
 [[nodiscard]] double plateau_stress(const StepLoadedBar& bar, double t,
-                                    const std::vector<double>& x,
-                                    const std::vector<double>& stress,
+                                    const std::vector<double>& x, const std::vector<double>& stress,
                                     const std::vector<double>& volume);
 
 }  // namespace pbms::mpm

@@ -15,8 +15,8 @@ using namespace pbms::grid;
 
 TEST(GridPartition, BoxesTileTheCellsAndOwnedNodesTileTheNodes) {
   const RegularGrid g({0, 0, 0}, 1.0, {7, 5, 3});
-  for (const std::array<bool, 3> periodic : {std::array<bool, 3>{false, false, false},
-                                             std::array<bool, 3>{true, false, true}}) {
+  for (const std::array<bool, 3> periodic :
+       {std::array<bool, 3>{false, false, false}, std::array<bool, 3>{true, false, true}}) {
     for (int ranks : {1, 2, 3, 4, 6, 12}) {
       const GridPartition part(g, periodic, ranks);
       EXPECT_EQ(part.dims()[0] * part.dims()[1] * part.dims()[2], ranks);

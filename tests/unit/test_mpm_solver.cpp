@@ -5,8 +5,8 @@
 
 #include "materials/material_registry.hpp"
 #include "pbms/error.hpp"
-#include "pbms/grid/shape_function.hpp"
 #include "pbms/grid/grid_partition.hpp"
+#include "pbms/grid/shape_function.hpp"
 #include "pbms/mpi/halo_sum.hpp"
 #include "solver/mpm_solver.hpp"
 
@@ -214,8 +214,9 @@ TEST(MpmSolver, IdealGasBoxCompressedAdiabaticallyKeepsPVGamma) {
   const grid::RegularGrid g({0, 0, 0}, 0.5, {24, 1, 1});
   const grid::GridPartition part(g, {false, true, true}, 1);
   mpi::HaloSum halo(MPI_COMM_SELF, part);
-  GridPatch patch{g, part.nodes_of(0), {false, true, true},
-                  [&halo](double* d, int c, int s) { halo.sum(d, c, s); }};
+  GridPatch patch{g, part.nodes_of(0), {false, true, true}, [&halo](double* d, int c, int s) {
+                    halo.sum(d, c, s);
+                  }};
   std::vector<std::unique_ptr<Material>> mats;
   mats.push_back(MaterialRegistry::create("ideal_gas", {{"gamma", gamma}}));
   const MaterialPointState s0 = mats[0]->initial_state(rho, p0);

@@ -13,7 +13,9 @@ using namespace pbms;
 using namespace pbms::mpm;
 
 namespace {
-StepLoadedBar seed_bar() { return {152.5, 2.5, 2000.0, 1000.0}; }
+StepLoadedBar seed_bar() {
+  return {152.5, 2.5, 2000.0, 1000.0};
+}
 }  // namespace
 
 TEST(StepLoadedBar, ExactStressFollowsTheReflections) {

@@ -18,17 +18,17 @@ inline constexpr double kBarPerEvPerA3 = 1.6021766208e6;  // eV/Å^3 -> bar
 
 enum class Dimension {
   kNone,
-  kPressure,     // bar
-  kLength,       // Å
-  kTime,         // ps
-  kTemperature,  // K
-  kVelocity,     // Å/ps
-  kEnergy,       // eV
-  kMass,         // g/mol
-  kRate,         // 1/ps
-  kDensity,      // g/cm^3 (LAMMPS metal); solvers use g/mol/Å^3 = 1/kGramPerCm3PerAmuPerA3
-  kAcceleration, // Å/ps^2
-  kForce,        // eV/Å
+  kPressure,      // bar
+  kLength,        // Å
+  kTime,          // ps
+  kTemperature,   // K
+  kVelocity,      // Å/ps
+  kEnergy,        // eV
+  kMass,          // g/mol
+  kRate,          // 1/ps
+  kDensity,       // g/cm^3 (LAMMPS metal); solvers use g/mol/Å^3 = 1/kGramPerCm3PerAmuPerA3
+  kAcceleration,  // Å/ps^2
+  kForce,         // eV/Å
 };
 
 // Canonical symbol of a dimension in metal units ("bar", "Å", ...).
