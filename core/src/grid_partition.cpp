@@ -121,16 +121,4 @@ std::vector<NodeOverlap> GridPartition::overlaps_of(int rank) const {
   return out;
 }
 
-std::array<double, 3> GridPartition::wrapped(std::array<double, 3> x) const {
-  for (size_t a = 0; a < 3; ++a) {
-    if (!periodic_[a]) continue;
-    const double lo = grid_.origin()[a];
-    const double len = grid_.upper()[a] - lo;
-    x[a] = lo + std::fmod(x[a] - lo, len);
-    if (x[a] < lo) x[a] += len;
-    if (x[a] >= lo + len) x[a] = lo;  // fmod of -tiny + len rounding up
-  }
-  return x;
-}
-
 }  // namespace pbms::grid

@@ -120,6 +120,18 @@ bool RegularGrid::contains(const std::array<double, 3>& x) const {
   return true;
 }
 
+std::array<double, 3> RegularGrid::wrapped(std::array<double, 3> x,
+                                           const std::array<bool, 3>& periodic) const {
+  for (size_t a = 0; a < 3; ++a) {
+    if (!periodic[a] || (x[a] >= origin_[a] && x[a] < upper_[a])) continue;
+    const double len = upper_[a] - origin_[a];
+    x[a] = origin_[a] + std::fmod(x[a] - origin_[a], len);
+    if (x[a] < origin_[a]) x[a] += len;
+    if (x[a] >= upper_[a]) x[a] = origin_[a];  // -tiny + len rounded up
+  }
+  return x;
+}
+
 std::optional<std::array<int, 3>> RegularGrid::cell_of(const std::array<double, 3>& x) const {
   if (!contains(x)) return std::nullopt;
   std::array<int, 3> c{};

@@ -27,10 +27,8 @@ void sweep(DpdParticles& particles, const HalfNeighbourList& list, const DpdPair
     const double m_i = particles.mass(i);
     for (std::size_t k = list.first(i); k < list.first(i + 1); ++k) {
       const std::size_t j = HalfNeighbourList::neighbour(entries[k]);
-      const Vec3& s = list.shift(HalfNeighbourList::shift_code(entries[k]));
-      const double dx = particles.x[i][0] - particles.x[j][0] + s[0];
-      const double dy = particles.x[i][1] - particles.x[j][1] + s[1];
-      const double dz = particles.x[i][2] - particles.x[j][2] + s[2];
+      const Vec3 d = list.separation(particles.x.data(), i, entries[k]);
+      const double dx = d[0], dy = d[1], dz = d[2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       if (r2 >= cutoff_squared) continue;
       const double r = std::sqrt(r2);

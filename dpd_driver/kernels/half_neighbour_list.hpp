@@ -56,6 +56,13 @@ class HalfNeighbourList {
   // Added to x_i - x_j to give the separation the list was built for, Å.
   [[nodiscard]] const Vec3& shift(int code) const { return shifts_[code]; }
   [[nodiscard]] const std::array<Vec3, 27>& shifts() const { return shifts_; }
+  // r_ij = x_i - x_j + shift of entry e of particle i: the separation every
+  // scalar pair loop starts from (the vectorised force loop gathers its own).
+  [[nodiscard]] Vec3 separation(const Vec3* x, std::size_t i, Entry e) const {
+    const std::size_t j = neighbour(e);
+    const Vec3& s = shifts_[shift_code(e)];
+    return {x[i][0] - x[j][0] + s[0], x[i][1] - x[j][1] + s[1], x[i][2] - x[j][2] + s[2]};
+  }
 
  private:
   double cutoff_;

@@ -35,10 +35,8 @@ PairResult SuttonChen::compute(DpdParticles& particles, const HalfNeighbourList&
     double rho_i = 0.0;
     for (std::size_t k = list.first(i); k < list.first(i + 1); ++k) {
       const std::size_t j = HalfNeighbourList::neighbour(entries[k]);
-      const Vec3& s = list.shift(HalfNeighbourList::shift_code(entries[k]));
-      const double dx = x[i][0] - x[j][0] + s[0];
-      const double dy = x[i][1] - x[j][1] + s[1];
-      const double dz = x[i][2] - x[j][2] + s[2];
+      const Vec3 d = list.separation(x, i, entries[k]);
+      const double dx = d[0], dy = d[1], dz = d[2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       if (r2 >= kernel_.cutoff_squared) continue;
       const double phi = std::exp(kernel_.m * 0.5 * std::log(kernel_.a_squared / r2));

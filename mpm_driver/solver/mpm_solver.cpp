@@ -376,15 +376,7 @@ void MpmSolver::finish_positions(MaterialPoints& points) const {
   const auto& d = patch_.domain;
   for (size_t p = 0; p < points.size(); ++p) {
     Vec3& x = points.x[p];
-    for (size_t a = 0; a < 3; ++a) {
-      if (!patch_.periodic[a]) continue;
-      const double lo = d.origin()[a], len = d.upper()[a] - d.origin()[a];
-      if (x[a] < lo || x[a] >= lo + len) {
-        x[a] = lo + std::fmod(x[a] - lo, len);
-        if (x[a] < lo) x[a] += len;
-        if (x[a] >= lo + len) x[a] = lo;
-      }
-    }
+    x = d.wrapped(x, patch_.periodic);
     if (!d.contains(x)) {
       throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})",
                               points.id[p], x[0], x[1], x[2]));

@@ -100,3 +100,13 @@ TEST(HaloSum, PeriodicImagesOfOneRankAddUp) {
   }
   for (size_t n = 0; n < data.size() / 2; ++n) EXPECT_EQ(data[2 * n + 1], -1.0);
 }
+
+TEST(RegularGrid, WrappedMovesPointsIntoThePeriodicAxesOnly) {
+  const RegularGrid g({-1, 0, 0}, 0.5, {4, 2, 2});  // x in [-1, 1), y, z in [0, 1)
+  const auto w = g.wrapped({1.25, -0.25, 1.5}, {true, true, false});
+  EXPECT_DOUBLE_EQ(w[0], -0.75);
+  EXPECT_DOUBLE_EQ(w[1], 0.75);
+  EXPECT_DOUBLE_EQ(w[2], 1.5);  // not periodic: left alone
+  EXPECT_DOUBLE_EQ(g.wrapped({1.0, 0, 0}, {true, false, false})[0], -1.0);  // upper face = lower
+  EXPECT_DOUBLE_EQ(g.wrapped({-5.0, 0, 0}, {true, false, false})[0], -1.0);
+}

@@ -56,10 +56,6 @@ class GridPartition {
   // itself, in a fixed order.
   [[nodiscard]] std::vector<NodeOverlap> overlaps_of(int rank) const;
 
-  // x moved back into [origin, upper) on periodic axes. Non-periodic axes
-  // are left alone.
-  [[nodiscard]] std::array<double, 3> wrapped(std::array<double, 3> x) const;
-
  private:
   [[nodiscard]] std::array<int, 3> coords_of(int rank) const;
   [[nodiscard]] int rank_of(const std::array<int, 3>& coords) const;

@@ -57,6 +57,10 @@ class RegularGrid {
   // The grid is the closed box [origin, upper]: points on the upper faces are
   // inside, so that material touching the far wall still maps to nodes.
   [[nodiscard]] bool contains(const std::array<double, 3>& x) const;
+  // x moved back into [origin, upper) along the axes marked periodic; the
+  // other axes are left alone.
+  [[nodiscard]] std::array<double, 3> wrapped(std::array<double, 3> x,
+                                              const std::array<bool, 3>& periodic) const;
   // The cell holding x, or nothing when x is outside. A point on a face
   // between two cells belongs to the upper one, except on the grid's upper
   // faces, where it belongs to the last cell.
