@@ -79,6 +79,10 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
   edges_ = make_series(box.id(), "edges", 1, 3, "angstrom");
   position_ = make_series(all.id(), "position", 2, n_total_, "angstrom");
   if (opt.velocities) velocity_ = make_series(all.id(), "velocity", 2, n_total_, "angstrom ps-1");
+  if (opt.forces) force_ = make_series(all.id(), "force", 2, n_total_, "eV angstrom-1");
+  if (opt.internal_energy) {
+    internal_energy_ = make_series(all.id(), "internal_energy", 1, n_total_, "eV");
+  }
 
   std::vector<long long> id_ll(ids.begin(), ids.end());
   write_fixed(all.id(), "id", H5T_NATIVE_LLONG, H5T_STD_I64LE, id_ll.data(), n_local_, offset_,
@@ -107,7 +111,11 @@ H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& 
   ts.time = make("time", 1, zero1, chunk1, H5T_IEEE_F64LE);
   h5::write_attribute(ts.time.id(), "unit", std::string("ps"));
   if (rank_dims == 1) {
-    const hsize_t dims[2] = {0, n}, chunk[2] = {16, n};
+    // Small rows (the box edges) batch frames per chunk; per-particle rows
+    // take one frame per chunk, capped, as the vector series do. HDF5
+    // refuses zero-sized chunk dimensions, hence the floor of 1.
+    const hsize_t width = std::max<hsize_t>(1, std::min<hsize_t>(n, 65536));
+    const hsize_t dims[2] = {0, n}, chunk[2] = {n <= 64 ? hsize_t{16} : hsize_t{1}, width};
     ts.value = make("value", 2, dims, chunk, H5T_IEEE_F64LE);
   } else {
     const hsize_t dims[3] = {0, n, 3};
@@ -162,15 +170,31 @@ void H5mdWriter::append(TimeSeries& ts, int64_t step, double time, const double*
 
 void H5mdWriter::write_frame(int64_t step, double time_ps, const std::array<double, 3>& box_edges,
                              const std::vector<double>& positions,
-                             const std::vector<double>& velocities) {
+                             const std::vector<double>& velocities,
+                             const std::vector<double>& forces,
+                             const std::vector<double>& internal_energy) {
+  // All sizes are checked before the first append, so that a refused frame
+  // leaves no series one frame longer than the others.
   if (positions.size() != 3 * n_local_) throw Error("H5MD: position array has the wrong size");
+  if (opt_.velocities && velocities.size() != 3 * n_local_) {
+    throw Error("H5MD: velocity array has the wrong size");
+  }
+  if (opt_.forces && forces.size() != 3 * n_local_) {
+    throw Error("H5MD: force array has the wrong size");
+  }
+  if (opt_.internal_energy && internal_energy.size() != n_local_) {
+    throw Error("H5MD: internal energy array has the wrong size");
+  }
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   append(edges_, step, time_ps, box_edges.data(), rank == 0 ? 3 : 0, 0, 3, 1);
   append(position_, step, time_ps, positions.data(), n_local_, offset_, n_total_, 3);
   if (opt_.velocities) {
-    if (velocities.size() != 3 * n_local_) throw Error("H5MD: velocity array has the wrong size");
     append(velocity_, step, time_ps, velocities.data(), n_local_, offset_, n_total_, 3);
+  }
+  if (opt_.forces) append(force_, step, time_ps, forces.data(), n_local_, offset_, n_total_, 3);
+  if (opt_.internal_energy) {
+    append(internal_energy_, step, time_ps, internal_energy.data(), n_local_, offset_, n_total_, 1);
   }
   ++frames_;
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);

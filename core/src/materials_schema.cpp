@@ -2,6 +2,50 @@
 
 namespace pbms::config {
 
+Param dpd_potential_schema() {
+  using units::Dimension;
+  Param potential = Param::map(
+      "potential",
+      {Param::choice("style", {"morse", "lj_nm", "table", "sutton_chen"},
+                     "Conservative force style of the DPD engine")
+           .require()},
+      "Conservative interaction of the mesoparticles; a potential file holds this same map");
+  const Param cutoff = Param::real("cutoff", Dimension::kLength,
+                                   "Beyond this distance the style contributes nothing")
+                           .require()
+                           .above(0);
+  const Param shift = Param::boolean("shift",
+                                     "Shift energies to zero at the cutoff (LAMMPS "
+                                     "pair_modify shift yes)")
+                          .def(false);
+  potential.discriminated_by("style")
+      .variant("morse",
+               {Param::real("d0", Dimension::kEnergy, "Well depth D0").require().above(0),
+                Param::real("alpha", Dimension::kNone, "Width alpha, 1/Å").require().above(0),
+                Param::real("r0", Dimension::kLength, "Equilibrium distance r0").require().above(0),
+                cutoff, shift},
+               "D0 [exp(-2 alpha (r - r0)) - 2 exp(-alpha (r - r0))], as LAMMPS pair_style morse")
+      .variant("lj_nm",
+               {Param::real("e0", Dimension::kEnergy, "Well depth E0").require().above(0),
+                Param::real("r0", Dimension::kLength, "Equilibrium distance r0").require().above(0),
+                Param::real("n", Dimension::kNone, "Repulsive exponent").require().above(0),
+                Param::real("m", Dimension::kNone, "Attractive exponent").require().above(0),
+                cutoff, shift},
+               "E0 / (n - m) [m (r0/r)^n - n (r0/r)^m], as LAMMPS pair_style nm/cut")
+      .variant("table",
+               {Param::file("file", "Rows r (Å), U (eV), F = -dU/dr (eV/Å)").require(),
+                Param::real("cutoff", Dimension::kLength, "Cutoff; default the last row").above(0)},
+               "Tabulated pair potential, cubic Hermite between rows")
+      .variant("sutton_chen",
+               {Param::real("epsilon", Dimension::kEnergy, "Energy scale").require().above(0),
+                Param::real("a", Dimension::kLength, "Length scale").require().above(0),
+                Param::real("n", Dimension::kNone, "Pair repulsion exponent").require().above(0),
+                Param::real("m", Dimension::kNone, "Density exponent").require().above(0),
+                Param::real("c", Dimension::kNone, "Embedding weight").require().above(0), cutoff},
+               "eps [sum (a/r)^n - c sum_i sqrt(rho_i)], rho_i = sum_j (a/r_ij)^m");
+  return potential;
+}
+
 Param materials_schema() {
   using units::Dimension;
   const std::vector<Param> eam_fields = {
@@ -38,13 +82,24 @@ Param materials_schema() {
       density,
       Param::real("gamma", Dimension::kNone, "Ratio of specific heats").def(1.4).above(1.0),
   };
-  Param material = Param::map(
-      "material",
-      {Param::choice("kind",
-                     {"eam_alloy", "eam_fs", "linear_elastic", "j2_plasticity", "ideal_gas"},
-                     "Interaction model or constitutive model")
-           .require()},
-      "One material");
+  const std::vector<Param> dpd_fields = {
+      Param::real("mass", Dimension::kMass, "Mass of one mesoparticle").require().above(0),
+      Param::real("lattice_constant", Dimension::kLength,
+                  "Cubic cell edge of the mesoparticle fcc crystal")
+          .require()
+          .above(0),
+      dpd_potential_schema(),
+      Param::file("potential_file",
+                  "A YAML file holding the `potential` map (what the MD->DPD fit writes); "
+                  "give this or `potential`"),
+  };
+  Param material = Param::map("material",
+                              {Param::choice("kind",
+                                             {"eam_alloy", "eam_fs", "linear_elastic",
+                                              "j2_plasticity", "ideal_gas", "dpd_mesoparticle"},
+                                             "Interaction model or constitutive model")
+                                   .require()},
+                              "One material");
   material.discriminated_by("kind")
       .variant("eam_alloy", eam_fields, "Embedded-atom method, LAMMPS pair_style eam/alloy")
       .variant("eam_fs", eam_fields, "Finnis-Sinclair EAM, LAMMPS pair_style eam/fs")
@@ -53,7 +108,9 @@ Param materials_schema() {
       .variant("j2_plasticity", j2_fields,
                "MPM: von Mises plasticity with linear isotropic hardening (radial return)")
       .variant("ideal_gas", gas_fields,
-               "MPM: ideal gas P = (gamma - 1) rho e, e from the work of compression");
+               "MPM: ideal gas P = (gamma - 1) rho e, e from the work of compression")
+      .variant("dpd_mesoparticle", dpd_fields,
+               "DPD: a coarse-grained particle (mass, crystal) and its conservative potential");
   return Param::map_of("materials", material, "Named materials that stages refer to");
 }
 

@@ -264,7 +264,48 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     }
   }
 
+  // A DPD mesoparticle's potential is inline or in a file of the same
+  // format; a file is checked here, with its own line numbers.
+  std::vector<ConfigError> file_errors;
+  if (materials.IsMap()) {
+    for (const auto& entry : materials) {
+      const YAML::Node m = entry.second;
+      if (!m.IsMap() || !m["kind"] || !m["kind"].IsScalar() ||
+          m["kind"].Scalar() != "dpd_mesoparticle") {
+        continue;
+      }
+      const std::string name = entry.first.as<std::string>();
+      const std::string mp = "materials." + name;
+      if (m["potential"] && m["potential_file"]) {
+        v.error(m["potential_file"], mp + ".potential_file",
+                "give `potential` or `potential_file`, not both");
+        continue;
+      }
+      if (!m["potential"] && !m["potential_file"]) {
+        v.error(m, mp, "a dpd_mesoparticle needs `potential` (inline) or `potential_file`");
+        continue;
+      }
+      if (!m["potential_file"]) continue;
+      const YAML::Node file_node = resolved["materials"][name]["potential_file"];
+      if (!file_node || !file_node.IsScalar()) continue;  // already reported
+      const std::string file = file_node.Scalar();
+      Validator fv(file);
+      YAML::Node doc;
+      try {
+        doc = YAML::LoadFile(file);
+      } catch (const YAML::Exception& e) {
+        fv.error_at(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
+      }
+      if (fv.errors().empty()) {
+        YAML::Node checked = fv.check(dpd_potential_schema(), doc, "potential");
+        if (fv.errors().empty()) resolved["materials"][name]["potential"] = checked;
+      }
+      file_errors.insert(file_errors.end(), fv.errors().begin(), fv.errors().end());
+    }
+  }
+
   result.errors = v.errors();
+  result.errors.insert(result.errors.end(), file_errors.begin(), file_errors.end());
   if (!result.errors.empty()) return result;
 
   Workflow wf;

@@ -25,12 +25,16 @@ struct DpdParticles {
   // DPDE: internal energy of the mesoparticle's unresolved degrees of
   // freedom, eV. Unused (left at zero) by isothermal DPD.
   std::vector<double> internal_energy;
+  // Bit g set: the particle belongs to group g of the run (a probe's slab,
+  // a rigid grip). Travels with the particle between ranks.
+  std::vector<std::uint32_t> group_mask;
   std::vector<double> mass_per_type;  // g/mol
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] double mass(std::size_t i) const { return mass_per_type[type[i]]; }
 
-  // Appends a particle with zero force, no image crossings and no internal energy.
+  // Appends a particle with zero force, no image crossings, no internal
+  // energy and no groups.
   void add(std::int64_t global_id, int particle_type, const Vec3& position,
            const Vec3& velocity = {0.0, 0.0, 0.0}) {
     id.push_back(global_id);
@@ -40,6 +44,19 @@ struct DpdParticles {
     f.push_back({0.0, 0.0, 0.0});
     image.push_back({0, 0, 0});
     internal_energy.push_back(0.0);
+    group_mask.push_back(0);
+  }
+
+  // Keeps the first n particles.
+  void truncate(std::size_t n) {
+    id.resize(n);
+    type.resize(n);
+    x.resize(n);
+    v.resize(n);
+    f.resize(n);
+    image.resize(n);
+    internal_energy.resize(n);
+    group_mask.resize(n);
   }
 
   void zero_forces() {

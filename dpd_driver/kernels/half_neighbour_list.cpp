@@ -38,8 +38,10 @@ HalfNeighbourList::HalfNeighbourList(double cutoff, double skin) : cutoff_(cutof
   if (!(skin >= 0.0)) throw Error("neighbour list: skin must be >= 0 Å");
 }
 
-void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box) {
+void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
+                              std::size_t owned) {
   const std::size_t n = particles.size();
+  const std::size_t rows = std::min(owned, n);
   if (n > kMaxParticles) {
     throw Error("neighbour list: " + std::to_string(n) + " particles on one rank, at most " +
                 std::to_string(kMaxParticles));
@@ -116,9 +118,9 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box)
     for (int a = 0; a < 3; ++a) shifts_[code][a] = box.periodic[a] ? s[a] * box.length(a) : 0.0;
   }
 
-  first_.resize(n + 1);
+  first_.resize(rows + 1);
   entries_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < rows; ++i) {
     first_[i] = entries_.size();
     const Vec3 xi = particles.x[i];
     const int ci = cell_of_[i];
@@ -133,7 +135,7 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box)
           const int cell = near[0][kx] + cells[0] * (near[1][ky] + cells[1] * near[2][kz]);
           for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
             const auto j = static_cast<std::size_t>(in_cell_order_[k]);
-            if (j <= i) continue;
+            if (j <= i) continue;  // ghosts (j >= rows) all come after i
             double d2 = 0.0;
             int code = 0;
             int stride = 1;
@@ -158,22 +160,25 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box)
       }
     }
   }
-  first_[n] = entries_.size();
-  x_at_build_ = particles.x;
+  first_[rows] = entries_.size();
+  x_at_build_.assign(particles.x.begin(), particles.x.begin() + static_cast<std::ptrdiff_t>(rows));
   ++builds_;
 }
 
 bool HalfNeighbourList::needs_rebuild(const DpdParticles& particles) const {
-  if (builds_ == 0 || particles.size() != x_at_build_.size()) return true;
-  const double limit_sq = 0.25 * skin_ * skin_;
+  if (builds_ == 0 || particles.size() < x_at_build_.size()) return true;
+  return max_displacement_squared(particles) > 0.25 * skin_ * skin_;
+}
+
+double HalfNeighbourList::max_displacement_squared(const DpdParticles& particles) const {
   double max_sq = 0.0;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
+  for (std::size_t i = 0; i < x_at_build_.size(); ++i) {
     const double dx = particles.x[i][0] - x_at_build_[i][0];
     const double dy = particles.x[i][1] - x_at_build_[i][1];
     const double dz = particles.x[i][2] - x_at_build_[i][2];
     max_sq = std::max(max_sq, dx * dx + dy * dy + dz * dz);
   }
-  return max_sq > limit_sq;
+  return max_sq;
 }
 
 }  // namespace pbms::dpd

@@ -34,14 +34,26 @@ class HalfNeighbourList {
   // in particles.image), then lists all pairs. Throws pbms::Error when a
   // periodic length is below 2 (cutoff + skin), where a particle could
   // interact with two images of another, or beyond kMaxParticles.
-  void build(DpdParticles& particles, const OrthogonalBox& box);
+  //
+  // In a decomposed run the particles from index `owned` on are ghosts:
+  // copies of other ranks' particles, already at their image positions. The
+  // list then holds every owned-owned pair once and every owned-ghost pair
+  // once (under the owned particle), never a ghost-ghost pair, and has
+  // `owned` rows; a rank adds forces only to its owned particles, so a pair
+  // that straddles two ranks is evaluated on both (no reverse communication).
+  void build(DpdParticles& particles, const OrthogonalBox& box, std::size_t owned = kAllOwned);
+  static constexpr std::size_t kAllOwned = static_cast<std::size_t>(-1);
 
-  // True when some particle has moved more than skin/2 since the last build,
-  // so that a pair now inside the cutoff might be missing; true before any build.
+  // True when some owned particle has moved more than skin/2 since the last
+  // build, so that a pair now inside the cutoff might be missing; true
+  // before any build.
   [[nodiscard]] bool needs_rebuild(const DpdParticles& particles) const;
+  // The largest squared displacement of an owned particle since the build, Å².
+  [[nodiscard]] double max_displacement_squared(const DpdParticles& particles) const;
 
   [[nodiscard]] double cutoff() const { return cutoff_; }
   [[nodiscard]] double skin() const { return skin_; }
+  // Rows of the list: the owned particles.
   [[nodiscard]] std::size_t particle_count() const {
     return first_.empty() ? 0 : first_.size() - 1;
   }

@@ -79,13 +79,16 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
         f[j][1] -= fy;
         f[j][2] -= fz;
         if constexpr (kTallied) {
-          energy += pair_energy[m];
-          vxx += dx[m] * fx;
-          vyy += dy[m] * fy;
-          vzz += dz[m] * fz;
-          vxy += dx[m] * fy;
-          vxz += dx[m] * fz;
-          vyz += dy[m] * fz;
+          // A pair with a ghost is evaluated on both its ranks; each
+          // tallies half, so that the sums over ranks count it once.
+          const double w = j < n ? 1.0 : 0.5;
+          energy += w * pair_energy[m];
+          vxx += w * dx[m] * fx;
+          vyy += w * dy[m] * fy;
+          vzz += w * dz[m] * fz;
+          vxy += w * dx[m] * fy;
+          vxz += w * dx[m] * fz;
+          vyz += w * dy[m] * fz;
         }
       }
     }

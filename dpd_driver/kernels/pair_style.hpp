@@ -8,6 +8,8 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "kernels/dpd_particles.hpp"
 #include "kernels/half_neighbour_list.hpp"
@@ -46,6 +48,16 @@ class PairStyle {
   [[nodiscard]] virtual double cutoff() const = 0;
   // The registry name, as a user writes it in a config.
   [[nodiscard]] virtual std::string_view name() const = 0;
+
+  // In a decomposed run, copies a per-particle array (one value per owned
+  // particle, then one per ghost) from owners onto their ghosts. A
+  // many-body style calls it between its density and force passes; pair
+  // styles never do. Unset (serial) means there are no ghosts.
+  using GhostForward = std::function<void(std::vector<double>&)>;
+  void set_ghost_forward(GhostForward forward) { ghost_forward_ = std::move(forward); }
+
+ protected:
+  GhostForward ghost_forward_;
 };
 
 }  // namespace pbms::dpd

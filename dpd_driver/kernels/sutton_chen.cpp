@@ -27,8 +27,9 @@ SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, d
 
 PairResult SuttonChen::compute(DpdParticles& particles, const HalfNeighbourList& list,
                                Tally tally) {
+  // Rows of the list are the owned particles; ghosts follow them.
   const std::size_t count = list.particle_count();
-  density_.assign(count, 0.0);
+  density_.assign(particles.size(), 0.0);
   const Vec3* x = particles.x.data();
   const HalfNeighbourList::Entry* entries = list.entries();
   for (std::size_t i = 0; i < count; ++i) {
@@ -46,7 +47,9 @@ PairResult SuttonChen::compute(DpdParticles& particles, const HalfNeighbourList&
     density_[i] += rho_i;
   }
 
-  half_inverse_sqrt_density_.resize(count);
+  // An owned density is complete now (its ghost partners were listed); a
+  // ghost's is not, and its owner sends the g the force pass needs.
+  half_inverse_sqrt_density_.assign(particles.size(), 0.0);
   double embedding = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     const double root = std::sqrt(density_[i]);
@@ -54,6 +57,7 @@ PairResult SuttonChen::compute(DpdParticles& particles, const HalfNeighbourList&
     // An isolated particle has no pair that would read its g.
     half_inverse_sqrt_density_[i] = root > 0.0 ? 0.5 / root : 0.0;
   }
+  if (ghost_forward_) ghost_forward_(half_inverse_sqrt_density_);
   kernel_.half_inverse_sqrt_density = half_inverse_sqrt_density_.data();
 
   PairResult result = pair_force_loop(kernel_, particles, list, tally);

@@ -54,7 +54,7 @@ class SuttonChen final : public PairStyle {
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
 
-  // ρ_i of the last compute(), one per particle.
+  // ρ_i of the last compute(), one per particle; complete for owned ones.
   [[nodiscard]] const std::vector<double>& density() const { return density_; }
 
  private:

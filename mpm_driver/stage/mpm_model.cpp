@@ -9,6 +9,7 @@
 #include "materials/material_registry.hpp"
 #include "pbms/error.hpp"
 #include "pbms/geometry/cell_fill.hpp"
+#include "pbms/geometry/region_yaml.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
@@ -34,25 +35,6 @@ std::array<bool, 3> axes_of(const YAML::Node& n) {
   return out;
 }
 
-geometry::RegionSpec region_spec(const YAML::Node& n) {
-  geometry::RegionSpec spec;
-  spec.style = n["style"].as<std::string>();
-  for (const auto& kv : n) {
-    const auto key = kv.first.as<std::string>();
-    if (key == "style") continue;
-    if (key == "of") {
-      for (const auto& child : kv.second) spec.children.push_back(region_spec(child));
-    } else if (key == "axis") {
-      spec.words[key] = kv.second.as<std::string>();
-    } else if (kv.second.IsSequence()) {
-      spec.params[key] = kv.second.as<std::vector<double>>();
-    } else {
-      spec.params[key] = {kv.second.as<double>()};
-    }
-  }
-  return spec;
-}
-
 }  // namespace
 
 uint32_t MpmModel::group_mask(const std::string& name) const {
@@ -60,10 +42,6 @@ uint32_t MpmModel::group_mask(const std::string& name) const {
     if (group_names[g] == name) return 1u << g;
   }
   throw Error(fmt::format("no group named '{}'", name));
-}
-
-std::unique_ptr<geometry::Region> region_from_yaml(const YAML::Node& node) {
-  return geometry::RegionRegistry::create(region_spec(node));
 }
 
 MaterialSet materials_from_yaml(const std::vector<std::string>& names,

@@ -12,7 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "pbms/geometry/region.hpp"
-#include "pbms/geometry/region_spec.hpp"
+#include "pbms/geometry/region_yaml.hpp"
 #include "solver/mpm_solver.hpp"
 
 namespace pbms::mpm {
@@ -40,8 +40,7 @@ struct MpmModel {
   [[nodiscard]] uint32_t group_mask(const std::string& name) const;  // throws if unknown
 };
 
-// Builds the region a config node describes (`style: block` ...).
-[[nodiscard]] std::unique_ptr<geometry::Region> region_from_yaml(const YAML::Node& node);
+using geometry::region_from_yaml;
 
 // Reads the stage's `materials` entries that `bodies` use, converting
 // densities and moduli to solver units when `metal_units`.

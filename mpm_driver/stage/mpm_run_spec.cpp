@@ -1,4 +1,5 @@
 #include "mpm_run.hpp"
+#include "pbms/geometry/region_yaml.hpp"
 #include "pbms/grid/shape_function.hpp"
 
 namespace pbms::mpm {
@@ -7,49 +8,9 @@ using config::OutputSpec;
 using config::Param;
 using units::Dimension;
 
-namespace {
+using geometry::region_param;
 
-Param region_param(const std::string& name, const std::string& doc) {
-  const std::vector<Param> block = {
-      Param::real_list("lo", Dimension::kLength, "Lower corner").require().length(3, 3),
-      Param::real_list("hi", Dimension::kLength, "Upper corner").require().length(3, 3)};
-  const std::vector<Param> sphere = {
-      Param::real_list("centre", Dimension::kLength, "Centre").require().length(3, 3),
-      Param::real("radius", Dimension::kLength, "Radius").require().above(0)};
-  const std::vector<Param> cylinder = {
-      Param::choice("axis", {"x", "y", "z"}, "Axis direction").require(),
-      Param::real_list("centre", Dimension::kLength,
-                       "Centre in the two other axes, in increasing axis order")
-          .require()
-          .length(2, 2),
-      Param::real("radius", Dimension::kLength, "Radius").require().above(0),
-      Param::real("lo", Dimension::kLength, "Lower end along the axis").require(),
-      Param::real("hi", Dimension::kLength, "Upper end along the axis").require()};
-  Param primitive = Param::map(
-      name, {Param::choice("style", {"block", "sphere", "cylinder"}, "Shape").require()}, doc);
-  primitive.discriminated_by("style")
-      .variant("block", block, "Axis-aligned box")
-      .variant("sphere", sphere, "Ball")
-      .variant("cylinder", cylinder, "Axis-aligned circular cylinder");
-  Param r = Param::map(
-      name,
-      {Param::choice(
-           "style", {"block", "sphere", "cylinder", "union", "intersection", "difference"}, "Shape")
-           .require()},
-      doc);
-  const std::vector<Param> composite = {
-      Param::list_of("of", primitive, "The regions combined (difference: first minus the others)")
-          .require()
-          .length(2, 16)};
-  r.discriminated_by("style")
-      .variant("block", block, "Axis-aligned box")
-      .variant("sphere", sphere, "Ball")
-      .variant("cylinder", cylinder, "Axis-aligned circular cylinder")
-      .variant("union", composite, "Points in any of the regions")
-      .variant("intersection", composite, "Points in all of the regions")
-      .variant("difference", composite, "Points in the first region and none of the others");
-  return r;
-}
+namespace {
 
 Param axes_param(const std::string& doc) {
   return Param::list_of("axes", Param::choice("axis", {"x", "y", "z"}, "An axis"), doc)

@@ -52,6 +52,9 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
 // The schema of the workflow file for the given drivers (docs, validation).
 Param workflow_schema(const std::vector<DriverDescription>& drivers);
 Param materials_schema();
+// The `potential` map of a dpd_mesoparticle material, also the format of a
+// potential file.
+Param dpd_potential_schema();
 
 // Applies `--ranks md=2` style overrides. Returns an error message, or empty.
 std::string apply_rank_override(Workflow& wf, const std::vector<DriverDescription>& drivers,

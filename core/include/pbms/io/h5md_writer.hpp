@@ -24,16 +24,20 @@ class H5mdWriter {
     std::string creator_version;
     std::array<bool, 3> periodic = {true, true, true};
     bool velocities = false;
+    bool forces = false;           // particles/all/force, eV/angstrom
+    bool internal_energy = false;  // particles/all/internal_energy, eV
   };
   // `ids` and `species` are this rank's particles; the count is fixed.
   H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids,
              const std::vector<int>& species);
 
-  // `positions` (and `velocities` when enabled) hold 3 values per local
-  // particle in the same order as the ids given to the constructor.
+  // `positions` (and `velocities`, `forces` when enabled) hold 3 values per
+  // local particle, `internal_energy` one, in the same order as the ids
+  // given to the constructor. Arrays of disabled series are ignored.
   void write_frame(int64_t step, double time_ps, const std::array<double, 3>& box_edges,
-                   const std::vector<double>& positions,
-                   const std::vector<double>& velocities = {});
+                   const std::vector<double>& positions, const std::vector<double>& velocities = {},
+                   const std::vector<double>& forces = {},
+                   const std::vector<double>& internal_energy = {});
   [[nodiscard]] int64_t frames() const { return frames_; }
 
  private:
@@ -49,7 +53,7 @@ class H5mdWriter {
   Options opt_;
   h5::Handle file_;
   h5::Handle dxpl_;
-  TimeSeries edges_, position_, velocity_;
+  TimeSeries edges_, position_, velocity_, force_, internal_energy_;
   hsize_t n_local_ = 0, offset_ = 0, n_total_ = 0;
   int64_t frames_ = 0;
 };

@@ -1,0 +1,186 @@
+// The PBMS half of bench/dpd_morse.sh: step throughput of the DPD engine on
+// one core for the copper mesoparticle crystal, and what the DPD thermostat
+// adds to it.
+//
+// Setup: 32,000 mesoparticles (periodic fcc, 20 × 20 × 20 cells,
+// a = 7.23 Å, 508.37 g/mol), the Morse fit of docs/dpd-morse-fit.md
+// (shift yes, r_c = 10 Å), skin 1 Å, dt = 0.01 ps, 1,000 steps, velocities
+// Maxwell–Boltzmann at 298 K. Runs
+//   - NVE (DpdScheme::kNve): BENCH dpd_particle_steps_per_s, which the
+//     script sets against lmp pair_style morse and morse/opt on the same
+//     state (target: PBMS ≥ 1.2 × the faster LAMMPS run);
+//   - full DPD (kVelocityVerlet, γ = 0.2 g/mol/ps, 298 K, DPD cutoff
+//     10 Å): BENCH dpd_thermostat_cost = its time / the NVE time (target
+//     ≤ 1.5).
+// Each time is the best of kRepeats runs from the same state.
+//
+// Usage: dpd_morse_bench WORK_DIR. Writes WORK_DIR/data.lmp (positions and
+// the very velocities PBMS starts from, so that lmp runs the same
+// trajectory) and WORK_DIR/in.morse (pair style chosen by -var pair), and
+// prints "# pbms ..." lines with the energies the script compares.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+
+#include "integrators/dpd_integrator.hpp"
+#include "kernels/fcc_crystal.hpp"
+#include "kernels/kinetic_sums.hpp"
+#include "kernels/maxwell_boltzmann_velocities.hpp"
+#include "kernels/morse.hpp"
+
+using namespace pbms::dpd;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr double kD0 = 2.70736;      // eV
+constexpr double kAlpha = 0.740826;  // 1/Å
+constexpr double kR0 = 5.472809;     // Å
+constexpr double kCutoff = 10.0;     // Å
+constexpr double kSkin = 1.0;        // Å
+constexpr double kLattice = 7.23;    // Å
+constexpr double kMass = 508.37;     // g/mol
+constexpr int kCells = 20;
+constexpr double kDt = 0.01;  // ps
+constexpr int kSteps = 1000;
+constexpr double kTemperature = 298.0;  // K
+constexpr double kGamma = 0.2;          // g/mol/ps
+constexpr std::uint64_t kSeed = 4928;
+// Every timing is the best of this many runs: single runs on a shared
+// machine scatter by ±20 %.
+constexpr int kRepeats = 2;
+
+// Processor time of this (single-threaded) process, s. The rates use it
+// rather than wall time so that other work on a shared machine, which takes
+// whole time slices, does not decide the ratios; on an idle machine the two
+// agree. The script reads lmp's Loop time times its "% CPU use" for the same.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+struct RunResult {
+  double seconds = 0.0;            // processor time of the steps
+  double wall_seconds = 0.0;       // for the record
+  double initial_potential = 0.0;  // eV
+  double initial_kinetic = 0.0;    // eV
+  double final_potential = 0.0;    // eV
+  double final_kinetic = 0.0;      // eV
+  long list_builds = 0;
+};
+
+RunResult run_once(const FccCrystal& start, DpdScheme scheme) {
+  FccCrystal crystal = start;
+  Morse morse(kD0, kAlpha, kR0, kCutoff, true);
+  DpdIntegratorSettings settings;
+  settings.scheme = scheme;
+  settings.dt = kDt;
+  settings.skin = kSkin;
+  settings.friction = {kGamma, kCutoff, kTemperature, kSeed};
+  DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
+  RunResult result;
+  result.initial_potential = integrator.potential().energy;
+  result.initial_kinetic = kinetic_energy(crystal.particles);
+  const auto t0 = Clock::now();
+  const double c0 = cpu_seconds();
+  for (int n = 0; n < kSteps; ++n) integrator.step();
+  result.seconds = cpu_seconds() - c0;
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  result.final_potential = integrator.potential().energy;
+  result.final_kinetic = kinetic_energy(crystal.particles);
+  result.list_builds = integrator.neighbour_list().build_count();
+  return result;
+}
+
+RunResult run(const FccCrystal& start, DpdScheme scheme) {
+  RunResult best = run_once(start, scheme);
+  for (int k = 1; k < kRepeats; ++k) {
+    const RunResult again = run_once(start, scheme);
+    if (again.seconds < best.seconds) best = again;
+  }
+  return best;
+}
+
+bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
+  const DpdParticles& p = crystal.particles;
+  std::FILE* data = std::fopen((dir + "/data.lmp").c_str(), "w");
+  if (data == nullptr) return false;
+  std::fprintf(data, "PBMS dpd_morse bench: fcc mesoparticle copper at 298 K\n\n");
+  std::fprintf(data, "%zu atoms\n1 atom types\n\n", p.size());
+  const char* axis[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    std::fprintf(data, "%.17g %.17g %slo %shi\n", crystal.box.lo[a], crystal.box.hi[a], axis[a],
+                 axis[a]);
+  }
+  std::fprintf(data, "\nMasses\n\n1 %.17g\n\nAtoms # atomic\n\n", kMass);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::fprintf(data, "%lld 1 %.17g %.17g %.17g\n", static_cast<long long>(p.id[i]), p.x[i][0],
+                 p.x[i][1], p.x[i][2]);
+  }
+  std::fprintf(data, "\nVelocities\n\n");
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::fprintf(data, "%lld %.17g %.17g %.17g\n", static_cast<long long>(p.id[i]), p.v[i][0],
+                 p.v[i][1], p.v[i][2]);
+  }
+  std::fclose(data);
+
+  std::FILE* in = std::fopen((dir + "/in.morse").c_str(), "w");
+  if (in == nullptr) return false;
+  std::fprintf(in,
+               "units metal\n"
+               "atom_style atomic\n"
+               "boundary p p p\n"
+               "read_data data.lmp\n"
+               "pair_style ${pair} %.17g\n"
+               "pair_coeff 1 1 %.17g %.17g %.17g\n"
+               "pair_modify shift yes\n"
+               "neighbor %.17g bin\n"
+               "neigh_modify every 1 delay 0 check yes\n"
+               "timestep %.17g\n"
+               "fix 1 all nve\n"
+               "thermo_style custom step pe ke etotal\n"
+               "thermo_modify format float %%.15g\n"
+               "thermo %d\n"
+               "run %d\n",
+               kCutoff, kD0, kAlpha, kR0, kSkin, kDt, kSteps, kSteps);
+  std::fclose(in);
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: dpd_morse_bench WORK_DIR\n");
+    return 2;
+  }
+  FccCrystal crystal = fcc_crystal(kCells, kCells, kCells, kLattice, kMass);
+  assign_maxwell_boltzmann_velocities(crystal.particles, kTemperature, kSeed);
+  if (!write_lammps_files(argv[1], crystal)) {
+    std::fprintf(stderr, "dpd_morse_bench: cannot write into %s\n", argv[1]);
+    return 1;
+  }
+
+  const RunResult nve = run(crystal, DpdScheme::kNve);
+  const RunResult dpd = run(crystal, DpdScheme::kVelocityVerlet);
+  const double particle_steps = static_cast<double>(crystal.particles.size()) * kSteps;
+
+  std::printf("# pbms %zu particles, %d steps, 1 core\n", crystal.particles.size(), kSteps);
+  std::printf("# pbms nve: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
+              nve.seconds, nve.wall_seconds, nve.list_builds,
+              nve.initial_potential + nve.initial_kinetic, nve.final_potential + nve.final_kinetic);
+  std::printf("# pbms dpd: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
+              dpd.seconds, dpd.wall_seconds, dpd.list_builds,
+              dpd.initial_potential + dpd.initial_kinetic, dpd.final_potential + dpd.final_kinetic);
+  // Machine-read by dpd_morse.sh: initial and final (NVE) energies in eV.
+  std::printf("# pbms initial_pe %.15g\n", nve.initial_potential);
+  std::printf("# pbms initial_ke %.15g\n", nve.initial_kinetic);
+  std::printf("# pbms final_pe %.15g\n", nve.final_potential);
+  std::printf("# pbms final_ke %.15g\n", nve.final_kinetic);
+  std::printf("BENCH dpd_particle_steps_per_s %.4g 1/s\n", particle_steps / nve.seconds);
+  std::printf("BENCH dpd_thermostat_cost %.4f x\n", dpd.seconds / nve.seconds);
+  return 0;
+}

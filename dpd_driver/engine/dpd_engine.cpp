@@ -1,0 +1,262 @@
+#include "engine/dpd_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/particle_migration.hpp"
+#include "integrators/shardlow_sweep.hpp"
+#include "kernels/dpd_pair_friction.hpp"
+#include "pbms/error.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::dpd {
+
+namespace {
+
+double interaction_cutoff(const PairStyle& pair, const DpdIntegratorSettings& s) {
+  if (s.scheme == DpdScheme::kNve) return pair.cutoff();
+  return std::max(pair.cutoff(), s.friction.cutoff);
+}
+
+bool is_shardlow(DpdScheme s) {
+  return s == DpdScheme::kShardlow || s == DpdScheme::kShardlowDpde;
+}
+
+void wrap_periodic(const OrthogonalBox& box, DpdParticles& p, std::size_t n) {
+  for (int a = 0; a < 3; ++a) {
+    if (!box.periodic[a]) continue;
+    const double l = box.length(a);
+    for (std::size_t i = 0; i < n; ++i) {
+      double& x = p.x[i][a];
+      const double crossings = std::floor((x - box.lo[a]) / l);
+      if (crossings == 0.0) continue;
+      x -= crossings * l;
+      int c = static_cast<int>(crossings);
+      if (x >= box.hi[a]) {  // a value just below lo rounds up to hi
+        x -= l;
+        ++c;
+      }
+      p.image[i][a] += c;
+    }
+  }
+}
+
+void allreduce_sum(MPI_Comm comm, double* data, int n) {
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, data, n, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+}
+
+}  // namespace
+
+DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<PairStyle> pair,
+                     const DpdIntegratorSettings& settings, DpdParticles all)
+    : domain_(comm, box, interaction_cutoff(*pair, settings) + settings.skin),
+      pair_(std::move(pair)),
+      settings_(settings),
+      ghosts_(domain_, interaction_cutoff(*pair_, settings) + settings.skin),
+      list_(interaction_cutoff(*pair_, settings), settings.skin),
+      step_(settings.first_step) {
+  // The same checks and messages as the serial integrator.
+  if (!(settings.dt > 0.0)) throw Error("DPD engine: dt must be > 0 ps");
+  if (settings.scheme != DpdScheme::kNve) {
+    if (!(settings.friction.gamma >= 0.0)) throw Error("DPD engine: gamma must be >= 0 g/mol/ps");
+    if (!(settings.friction.cutoff > 0.0)) throw Error("DPD engine: DPD cutoff must be > 0 Å");
+  }
+  if (settings.scheme == DpdScheme::kShardlowDpde && !(settings.heat_capacity > 0.0)) {
+    throw Error("DPD engine: DPDE needs a heat capacity > 0 eV/K");
+  }
+  if (is_shardlow(settings.scheme) && domain_.size() > 1) {
+    throw Error(
+        "DPD engine: the Shardlow schemes sweep pairs in a sequence that a decomposition would "
+        "change; run them on one rank, or use the velocity_verlet scheme on several");
+  }
+  total_ = static_cast<std::int64_t>(all.size());
+  wrap_periodic(box, all, all.size());
+  particles_.mass_per_type = all.mass_per_type;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (!domain_.owns(all.x[i])) continue;
+    particles_.add(all.id[i], all.type[i], all.x[i], all.v[i]);
+    particles_.image.back() = all.image[i];
+    particles_.internal_energy.back() = all.internal_energy[i];
+    particles_.group_mask.back() = all.group_mask[i];
+  }
+  owned_ = particles_.size();
+  if (domain_.size() > 1) {
+    pair_->set_ghost_forward([this](std::vector<double>& values) { ghosts_.forward(values); });
+  }
+  rebuild();
+  compute_forces(Tally::kForcesOnly);
+}
+
+void DpdEngine::set_prescribed_groups(std::uint32_t mask) {
+  if (mask != 0 && is_shardlow(settings_.scheme)) {
+    throw Error(
+        "DPD engine: rigid or frozen groups need the velocity_verlet or nve scheme (a Shardlow "
+        "pair update would change their velocities)");
+  }
+  prescribed_ = mask;
+}
+
+void DpdEngine::set_rigid_bodies(const std::vector<std::uint32_t>& masks) {
+  std::uint32_t all = 0;
+  for (const std::uint32_t m : masks) all |= m;
+  set_prescribed_groups(prescribed_ | all);
+  bodies_ = masks;
+  body_mass_.assign(masks.size(), 0.0);
+  for (std::size_t b = 0; b < masks.size(); ++b) {
+    for (std::size_t i = 0; i < owned_; ++i) {
+      if ((particles_.group_mask[i] & masks[b]) != 0) body_mass_[b] += particles_.mass(i);
+    }
+  }
+  if (!masks.empty()) {
+    allreduce_sum(comm(), body_mass_.data(), static_cast<int>(masks.size()));
+  }
+  body_force_.assign(3 * masks.size(), 0.0);
+}
+
+void DpdEngine::rebuild() {
+  particles_.truncate(owned_);
+  wrap_periodic(domain_.box(), particles_, owned_);
+  if (domain_.size() > 1) migrate_particles(domain_, particles_);
+  owned_ = particles_.size();
+  ghosts_.build(particles_, owned_);
+  list_.build(particles_, domain_.list_box(), owned_);
+}
+
+void DpdEngine::refresh_ghosts() {
+  double moved = list_.max_displacement_squared(particles_);
+  if (domain_.size() > 1) {
+    mpi::check(MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_DOUBLE, MPI_MAX, comm()),
+               "MPI_Allreduce (neighbour list check)");
+  }
+  const double half_skin = 0.5 * list_.skin();
+  if (moved > half_skin * half_skin) {
+    rebuild();
+  } else {
+    ghosts_.forward(particles_);
+  }
+}
+
+void DpdEngine::half_kick() {
+  // f / m in eV/Å/(g/mol) is mvv2e Å/ps² too small.
+  const double half_dt = 0.5 * settings_.dt / units::kMvv2e;
+  for (std::size_t i = 0; i < owned_; ++i) {
+    if ((particles_.group_mask[i] & prescribed_) != 0) continue;
+    const double factor = half_dt / particles_.mass(i);
+    for (int a = 0; a < 3; ++a) particles_.v[i][a] += factor * particles_.f[i][a];
+  }
+  if (bodies_.empty()) return;
+  // A rigid body's internal forces cancel in the sum; what is left is the
+  // push of everything else, shared by all its particles.
+  std::fill(body_force_.begin(), body_force_.end(), 0.0);
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    for (std::size_t i = 0; i < owned_; ++i) {
+      if ((particles_.group_mask[i] & bodies_[b]) == 0) continue;
+      for (int a = 0; a < 3; ++a) body_force_[3 * b + a] += particles_.f[i][a];
+    }
+  }
+  allreduce_sum(comm(), body_force_.data(), static_cast<int>(body_force_.size()));
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!(body_mass_[b] > 0.0)) continue;
+    for (std::size_t i = 0; i < owned_; ++i) {
+      if ((particles_.group_mask[i] & bodies_[b]) == 0) continue;
+      for (int a = 0; a < 3; ++a)
+        particles_.v[i][a] += half_dt * body_force_[3 * b + a] / body_mass_[b];
+    }
+  }
+}
+
+PairResult DpdEngine::compute_forces(Tally tally) {
+  particles_.zero_forces();
+  PairResult result = pair_->compute(particles_, list_, tally);
+  if (settings_.scheme == DpdScheme::kVelocityVerlet) {
+    // Half-step velocities (dpd_integrator.hpp), ghosts' included.
+    add_dissipative_random_forces(particles_, particles_.v, list_, settings_.friction, step_,
+                                  settings_.dt);
+  }
+  return result;
+}
+
+void DpdEngine::step() {
+  const double dt = settings_.dt;
+  if (settings_.scheme == DpdScheme::kShardlow) {
+    shardlow_sweep(particles_, list_, settings_.friction, step_, dt);
+  } else if (settings_.scheme == DpdScheme::kShardlowDpde) {
+    shardlow_sweep_energy_conserving(particles_, list_, settings_.friction, settings_.heat_capacity,
+                                     step_, dt);
+  }
+  half_kick();
+  for (std::size_t i = 0; i < owned_; ++i) {
+    for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];
+  }
+  ++step_;
+  refresh_ghosts();
+  compute_forces(Tally::kForcesOnly);
+  half_kick();
+}
+
+void DpdEngine::berendsen(double temperature, double tau) {
+  if (!(tau > 0.0)) throw Error("Berendsen thermostat: tau must be > 0 ps");
+  double sums[2] = {0.0, 0.0};  // Σ m v², free particles
+  for (std::size_t i = 0; i < owned_; ++i) {
+    if ((particles_.group_mask[i] & prescribed_) != 0) continue;
+    const Vec3& v = particles_.v[i];
+    sums[0] += particles_.mass(i) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    sums[1] += 1.0;
+  }
+  allreduce_sum(comm(), sums, 2);
+  const double dof = 3.0 * sums[1] - 3.0;
+  const double current = dof > 0.0 ? sums[0] * units::kMvv2e / (dof * units::kBoltzmann) : 0.0;
+  if (!(current > 0.0)) {
+    throw Error("Berendsen thermostat: the particles are at rest; assign velocities first");
+  }
+  const double lambda = std::sqrt(1.0 + settings_.dt / tau * (temperature / current - 1.0));
+  for (std::size_t i = 0; i < owned_; ++i) {
+    if ((particles_.group_mask[i] & prescribed_) != 0) continue;
+    for (double& c : particles_.v[i]) c *= lambda;
+  }
+}
+
+ThermoState DpdEngine::thermo(bool with_potential) {
+  // count, K, Σu, 6 kinetic tensor, 3 momentum, U, 6 virial
+  double s[19] = {};
+  s[0] = static_cast<double>(owned_);
+  for (std::size_t i = 0; i < owned_; ++i) {
+    const double m = particles_.mass(i);
+    const Vec3& v = particles_.v[i];
+    s[1] += m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    s[2] += particles_.internal_energy[i];
+    s[3] += m * v[0] * v[0];
+    s[4] += m * v[1] * v[1];
+    s[5] += m * v[2] * v[2];
+    s[6] += m * v[0] * v[1];
+    s[7] += m * v[0] * v[2];
+    s[8] += m * v[1] * v[2];
+    for (int a = 0; a < 3; ++a) s[9 + a] += m * v[a];
+  }
+  if (with_potential) {
+    scratch_forces_.swap(particles_.f);
+    particles_.f.assign(particles_.size(), {0.0, 0.0, 0.0});
+    const PairResult pr = pair_->compute(particles_, list_, Tally::kEnergyAndVirial);
+    scratch_forces_.swap(particles_.f);
+    s[12] = pr.energy;
+    for (int c = 0; c < 6; ++c) s[13 + c] = pr.virial[c];
+  }
+  allreduce_sum(comm(), s, 19);
+  ThermoState t;
+  t.particles = s[0];
+  t.kinetic = 0.5 * s[1] * units::kMvv2e;
+  t.internal = s[2];
+  const double dof = 3.0 * s[0] - 3.0;
+  t.temperature = dof > 0.0 ? 2.0 * t.kinetic / (dof * units::kBoltzmann) : 0.0;
+  t.potential = s[12];
+  const double volume = domain_.box().volume();
+  for (int c = 0; c < 6; ++c) {
+    t.pressure[c] = (s[3 + c] * units::kMvv2e + s[13 + c]) / volume * units::kBarPerEvPerA3;
+  }
+  for (int c = 0; c < 6; ++c) t.virial[c] = s[13 + c];
+  t.momentum = {s[9], s[10], s[11]};
+  return t;
+}
+
+}  // namespace pbms::dpd

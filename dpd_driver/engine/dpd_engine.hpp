@@ -1,0 +1,111 @@
+// The decomposed DPD/DPDE engine the dpd_driver stages run: particles,
+// ghosts, neighbour list, pair style and integrator on one rank of a
+// driver, with the MPI kept to the domain, ghost and migration classes.
+//
+// Pairs that straddle two ranks are evaluated on both ("newton off"), so a
+// step needs no reverse communication and each rank's forces are exactly
+// those of a serial run up to summation order; the pair noise is keyed by
+// global ids and step (pair_noise.hpp), so the trajectory does not depend
+// on the decomposition. On one rank there are no ghosts at all: periodic
+// images come from the neighbour list's shifts, as in DpdIntegrator.
+//
+// The Shardlow schemes sweep pairs in sequence, so their result depends on
+// the sweep order; they run on one rank only and the engine refuses them
+// on more.
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "engine/domain_decomposition.hpp"
+#include "engine/ghost_exchange.hpp"
+#include "integrators/dpd_integrator.hpp"
+#include "kernels/half_neighbour_list.hpp"
+#include "kernels/pair_style.hpp"
+
+namespace pbms::dpd {
+
+// Global (all-rank) thermodynamic state.
+struct ThermoState {
+  double particles = 0.0;
+  double kinetic = 0.0;      // eV
+  double potential = 0.0;    // eV (conservative pair energy)
+  double internal = 0.0;     // eV, Σ u_i (DPDE)
+  double temperature = 0.0;  // K, kinetic, 3N − 3 degrees of freedom
+  // Pressure tensor (kinetic + conservative virial) / V, bar; xx yy zz xy xz yz.
+  std::array<double, 6> pressure{};
+  // Conservative virial Σ r_ij ⊗ f_ij, eV (zero unless with_potential).
+  std::array<double, 6> virial{};
+  Vec3 momentum{};  // g/mol Å/ps
+  [[nodiscard]] double total() const { return kinetic + potential + internal; }
+};
+
+class DpdEngine {
+ public:
+  // Every rank passes the same box, style, settings and the same full set
+  // of particles; each keeps the ones its sub-box owns. Builds ghosts and
+  // list and computes the initial forces. Throws pbms::Error as
+  // DpdIntegrator does, when the box cannot be split over the ranks, and for
+  // a Shardlow scheme on more than one rank.
+  DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<PairStyle> pair,
+            const DpdIntegratorSettings& settings, DpdParticles all);
+
+  // Particles of groups in `mask` keep the velocity they have (rigid
+  // flyers, grips, frozen walls): they drift but are never kicked. Their
+  // forces are still computed, for the grip reaction. Throws pbms::Error
+  // for a Shardlow scheme (its pair updates would move them).
+  void set_prescribed_groups(std::uint32_t mask);
+
+  // Each group in `masks` moves as one free rigid body (translation only):
+  // its particles share one velocity, changed every half kick by the net
+  // force on the group over its mass (a flyer launched at a speed). Adds
+  // the groups to the prescribed ones. Throws as set_prescribed_groups.
+  void set_rigid_bodies(const std::vector<std::uint32_t>& masks);
+
+  // One step of the scheme.
+  void step();
+  // Scales the free particles' velocities towards T over tau (Berendsen).
+  void berendsen(double temperature, double tau);
+
+  // All-rank sums; with_potential costs one extra pair pass.
+  [[nodiscard]] ThermoState thermo(bool with_potential);
+
+  [[nodiscard]] DpdParticles& particles() { return particles_; }
+  [[nodiscard]] const DpdParticles& particles() const { return particles_; }
+  // Owned particles are [0, owned()); ghosts follow.
+  [[nodiscard]] std::size_t owned() const { return owned_; }
+  [[nodiscard]] std::int64_t total_particles() const { return total_; }
+  [[nodiscard]] std::int64_t step_count() const { return step_; }
+  [[nodiscard]] long rebuilds() const { return list_.build_count(); }
+  [[nodiscard]] const DomainDecomposition& domain() const { return domain_; }
+  [[nodiscard]] const DpdIntegratorSettings& settings() const { return settings_; }
+  [[nodiscard]] const PairStyle& pair() const { return *pair_; }
+  [[nodiscard]] MPI_Comm comm() const { return domain_.comm(); }
+
+ private:
+  void refresh_ghosts();
+  void rebuild();
+  PairResult compute_forces(Tally tally);
+  void half_kick();
+
+  DomainDecomposition domain_;
+  std::unique_ptr<PairStyle> pair_;
+  DpdIntegratorSettings settings_;
+  GhostExchange ghosts_;
+  HalfNeighbourList list_;
+  DpdParticles particles_;
+  std::size_t owned_ = 0;
+  std::int64_t total_ = 0;
+  std::int64_t step_ = 0;
+  std::uint32_t prescribed_ = 0;
+  std::vector<std::uint32_t> bodies_;  // group mask of each free rigid body
+  std::vector<double> body_mass_;      // g/mol
+  std::vector<double> body_force_;     // scratch, 3 per body
+  std::vector<Vec3> scratch_forces_;
+};
+
+}  // namespace pbms::dpd

@@ -1,0 +1,15 @@
+// dpd_driver: the dissipative particle dynamics engine.
+
+#include "pbms/driver/stage_kind.hpp"
+#include "stage/dpd_properties_stages.hpp"
+#include "stage/dpd_run.hpp"
+
+int main(int argc, char** argv) {
+  pbms::StageRegistry registry;
+  registry.add<pbms::dpd::DpdRunStage>();
+  registry.add<pbms::dpd::DpdEquilibrateStage>();
+  registry.add<pbms::dpd::DpdElasticStage>();
+  registry.add<pbms::dpd::DpdIsothermStage>();
+  pbms::DriverInfo info{"dpd_driver", "dpd", {}};
+  return pbms::run_driver(argc, argv, info, registry);
+}

@@ -1,0 +1,261 @@
+#include "properties/elastic_constants.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "integrators/dpd_integrator.hpp"
+#include "kernels/half_neighbour_list.hpp"
+#include "kernels/maxwell_boltzmann_velocities.hpp"
+#include "pbms/error.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::dpd {
+
+namespace {
+
+constexpr double kGpaPerEvPerA3 = units::kBarPerEvPerA3 / units::kBarPerGPa;
+// Only ever costs a rebuild when too small (never a result), and every
+// 0.1 Å of it adds ~0.2 Å to the smallest box: thermal displacements at
+// room temperature are ~0.05 Å, so 0.5 Å rebuilds rarely and lets the
+// 10 Å copper cutoff run in 3 cells.
+constexpr double kSkin = 0.5;
+
+bool is_static(const ThermalSettings& thermal) {
+  return thermal.temperature == 0.0;
+}
+
+// Positions and box scaled by (1 + strain[a]) along each axis: the
+// homogeneous strain, affine on the particles.
+void apply_strain(FccCrystal& crystal, const Vec3& strain) {
+  for (int a = 0; a < 3; ++a) {
+    const double factor = 1.0 + strain[a];
+    crystal.box.lo[a] *= factor;
+    crystal.box.hi[a] *= factor;
+    for (auto& x : crystal.particles.x) x[a] *= factor;
+  }
+}
+
+// fcc with x' = [110], y' = [−110], z = [001]: body-centred tetragonal cells
+// a/√2 × a/√2 × a with two particles, (0,0,0) and (½,½,½).
+FccCrystal rotated_fcc(int cells_xy, int cells_z, double lattice_constant, double mass) {
+  const double side = lattice_constant / std::numbers::sqrt2;
+  FccCrystal crystal;
+  crystal.box.hi = {cells_xy * side, cells_xy * side, cells_z * lattice_constant};
+  crystal.particles.mass_per_type = {mass};
+  std::int64_t id = 1;
+  for (int k = 0; k < cells_z; ++k) {
+    for (int j = 0; j < cells_xy; ++j) {
+      for (int i = 0; i < cells_xy; ++i) {
+        crystal.particles.add(id++, 0, {i * side, j * side, k * lattice_constant});
+        crystal.particles.add(id++, 0,
+                              {(i + 0.5) * side, (j + 0.5) * side, (k + 0.5) * lattice_constant});
+      }
+    }
+  }
+  return crystal;
+}
+
+// The fewest cells of edge `edge` that keep a box, shrunk by `shrink`, at
+// least 2 reach long, and no fewer than `at_least`.
+int cells_for(double edge, double shrink, double reach, int at_least) {
+  // The margin keeps round-off in the strained box from failing the list's own test.
+  const int needed = static_cast<int>(std::ceil(2.0 * reach * (1.0 + 1e-9) / (edge * shrink)));
+  return std::max(needed, at_least);
+}
+
+Stress instantaneous_stress(const DpdParticles& particles, const PairResult& pair, double volume) {
+  std::array<double, 6> kinetic{};
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Vec3& v = particles.v[i];
+    const double m = particles.mass(i);
+    kinetic[0] += m * v[0] * v[0];
+    kinetic[1] += m * v[1] * v[1];
+    kinetic[2] += m * v[2] * v[2];
+    kinetic[3] += m * v[0] * v[1];
+    kinetic[4] += m * v[0] * v[2];
+    kinetic[5] += m * v[1] * v[2];
+  }
+  Stress s{};
+  const double scale = -kGpaPerEvPerA3 / volume;
+  for (int c = 0; c < 6; ++c) s[c] = scale * (kinetic[c] * units::kMvv2e + pair.virial[c]);
+  return s;
+}
+
+// Block means of a series; a series shorter than kBlocks is one block.
+std::vector<double> block_means(const std::vector<double>& series) {
+  const std::size_t per = series.size() / kBlocks;
+  if (per == 0) {
+    double sum = 0.0;
+    for (const double x : series) sum += x;
+    return {series.empty() ? 0.0 : sum / static_cast<double>(series.size())};
+  }
+  std::vector<double> means(kBlocks, 0.0);
+  // A remainder of fewer than kBlocks samples is dropped, so blocks are equal.
+  for (int b = 0; b < kBlocks; ++b) {
+    for (std::size_t k = 0; k < per; ++k) means[b] += series[b * per + k];
+    means[b] /= static_cast<double>(per);
+  }
+  return means;
+}
+
+MeanAndError mean_and_error_of_blocks(const std::vector<double>& blocks) {
+  MeanAndError r;
+  for (const double b : blocks) r.mean += b;
+  r.mean /= static_cast<double>(blocks.size());
+  if (blocks.size() < 2) return r;
+  double variance = 0.0;
+  for (const double b : blocks) variance += (b - r.mean) * (b - r.mean);
+  variance /= static_cast<double>(blocks.size() - 1);
+  r.error = std::sqrt(variance / static_cast<double>(blocks.size()));
+  return r;
+}
+
+// The per-sample stress differences σ(+ε) − σ(−ε) of a ± pair, component c.
+std::vector<double> difference(const std::vector<Stress>& plus, const std::vector<Stress>& minus,
+                               int c) {
+  std::vector<double> d(plus.size());
+  for (std::size_t k = 0; k < plus.size(); ++k) d[k] = plus[k][c] - minus[k][c];
+  return d;
+}
+
+}  // namespace
+
+double friction_cutoff(const ThermalSettings& thermal, double lattice_constant) {
+  return thermal.dpd_cutoff > 0.0 ? thermal.dpd_cutoff : lattice_constant;
+}
+
+double neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
+                       double lattice_constant) {
+  if (is_static(thermal)) return pair.cutoff();
+  return std::max(pair.cutoff(), friction_cutoff(thermal, lattice_constant)) + kSkin;
+}
+
+void check_settings(const CrystalSpec& crystal, const ThermalSettings& thermal) {
+  const std::string where = "DPD crystal properties: ";
+  if (!(crystal.lattice_constant > 0.0)) throw Error(where + "lattice_constant must be > 0 Å");
+  if (crystal.cells < 0) throw Error(where + "cells must be >= 0 (0: automatic)");
+  if (!(thermal.temperature >= 0.0)) throw Error(where + "temperature must be >= 0 K");
+  if (is_static(thermal)) return;
+  if (!(crystal.mass > 0.0)) throw Error(where + "mass must be > 0 g/mol at temperature > 0");
+  if (!(thermal.gamma > 0.0)) throw Error(where + "gamma must be > 0 g/mol/ps");
+  if (!(thermal.dpd_cutoff >= 0.0)) {
+    throw Error(where + "dpd_cutoff must be >= 0 Å (0: the lattice constant)");
+  }
+  if (!(thermal.dt > 0.0)) throw Error(where + "dt must be > 0 ps");
+  if (thermal.equilibration_steps < 0) throw Error(where + "equilibration_steps must be >= 0");
+  if (thermal.sampling_steps < kBlocks) {
+    throw Error(where + "sampling_steps must be >= " + std::to_string(kBlocks) +
+                " (one per error block)");
+  }
+}
+
+MeanAndError block_mean(const std::vector<double>& series) {
+  return mean_and_error_of_blocks(block_means(series));
+}
+
+std::vector<Stress> sample_stress(PairStyle& pair, FccCrystal crystal,
+                                  const ThermalSettings& thermal, double lattice_constant) {
+  DpdParticles& particles = crystal.particles;
+  const double volume = crystal.box.volume();
+  if (is_static(thermal)) {
+    HalfNeighbourList list(pair.cutoff(), 0.0);
+    list.build(particles, crystal.box);
+    particles.zero_forces();
+    return {instantaneous_stress(particles, pair.compute(particles, list, Tally::kEnergyAndVirial),
+                                 volume)};
+  }
+  assign_maxwell_boltzmann_velocities(particles, 2.0 * thermal.temperature, thermal.seed);
+  DpdIntegratorSettings settings;
+  settings.scheme = DpdScheme::kVelocityVerlet;
+  settings.dt = thermal.dt;
+  settings.skin = kSkin;
+  settings.friction = {thermal.gamma, friction_cutoff(thermal, lattice_constant),
+                       thermal.temperature, thermal.seed};
+  DpdIntegrator integrator(particles, crystal.box, pair, settings);
+  for (int s = 0; s < thermal.equilibration_steps; ++s) integrator.step();
+  std::vector<Stress> samples;
+  samples.reserve(static_cast<std::size_t>(thermal.sampling_steps));
+  for (int s = 0; s < thermal.sampling_steps; ++s) {
+    const PairResult result = integrator.step(Tally::kEnergyAndVirial);
+    samples.push_back(instantaneous_stress(particles, result, volume));
+  }
+  return samples;
+}
+
+ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
+                                   const ThermalSettings& thermal, double strain) {
+  check_settings(crystal, thermal);
+  if (!(strain >= 0.0 && strain <= 0.05)) {
+    throw Error("DPD elastic constants: strain must be in [0, 0.05] (0: the default)");
+  }
+  if (strain == 0.0) strain = is_static(thermal) ? kStaticStrain : kThermalStrain;
+  const double a = crystal.lattice_constant;
+  const double reach = neighbour_reach(pair, thermal, a);
+  const int at_least_z = crystal.cells;
+  const int at_least_xy = static_cast<int>(std::ceil(crystal.cells * std::numbers::sqrt2 - 1e-9));
+  const int cells_z = cells_for(a, 1.0 - strain, reach, at_least_z);
+  const int cells_xy = cells_for(a / std::numbers::sqrt2, 1.0 - strain, reach, at_least_xy);
+  if (crystal.cells > 0 && crystal.cells < cells_z) {
+    throw Error("DPD elastic constants: " + std::to_string(crystal.cells) +
+                " cells are too few for a neighbour reach of " + std::to_string(reach) +
+                " Å at strain " + std::to_string(strain) + "; at least " + std::to_string(cells_z) +
+                " (or 0, automatic)");
+  }
+  const FccCrystal reference = rotated_fcc(cells_xy, cells_z, a, crystal.mass);
+
+  auto run = [&](const Vec3& e) {
+    FccCrystal strained = reference;
+    apply_strain(strained, e);
+    return sample_stress(pair, std::move(strained), thermal, a);
+  };
+  const std::vector<Stress> tetragonal_plus = run({0.0, 0.0, strain});
+  const std::vector<Stress> tetragonal_minus = run({0.0, 0.0, -strain});
+  const std::vector<Stress> shear_plus = run({strain, -strain, 0.0});
+  const std::vector<Stress> shear_minus = run({-strain, strain, 0.0});
+
+  // Per-sample estimates, then blocks: errors of derived quantities then
+  // carry the covariances of the constants they combine.
+  const double over = 1.0 / (2.0 * strain);
+  const std::vector<double> dxx = difference(tetragonal_plus, tetragonal_minus, 0);
+  const std::vector<double> dyy = difference(tetragonal_plus, tetragonal_minus, 1);
+  const std::vector<double> dzz = difference(tetragonal_plus, tetragonal_minus, 2);
+  const std::vector<double> sxx = difference(shear_plus, shear_minus, 0);
+  const std::vector<double> syy = difference(shear_plus, shear_minus, 1);
+  std::vector<double> c11(dzz.size()), c12(dzz.size()), c44(sxx.size()), p(dzz.size());
+  for (std::size_t k = 0; k < dzz.size(); ++k) {
+    c11[k] = dzz[k] * over;
+    c12[k] = 0.5 * (dxx[k] + dyy[k]) * over;
+    c44[k] = 0.25 * (sxx[k] - syy[k]) * over;
+    p[k] = 0.5 * (pressure_of(tetragonal_plus[k]) + pressure_of(tetragonal_minus[k]));
+  }
+  const std::vector<double> c11_blocks = block_means(c11);
+  const std::vector<double> c12_blocks = block_means(c12);
+  std::vector<double> youngs(c11_blocks.size()), bulk(c11_blocks.size());
+  for (std::size_t b = 0; b < c11_blocks.size(); ++b) {
+    const ElasticConstants block{c11_blocks[b], c12_blocks[b]};
+    youngs[b] = block.youngs_100();
+    bulk[b] = block.bulk_modulus();
+  }
+
+  ElasticConstants result;
+  const MeanAndError c11_estimate = mean_and_error_of_blocks(c11_blocks);
+  const MeanAndError c12_estimate = mean_and_error_of_blocks(c12_blocks);
+  const MeanAndError c44_estimate = block_mean(c44);
+  const MeanAndError pressure = block_mean(p);
+  result.c11 = c11_estimate.mean;
+  result.c12 = c12_estimate.mean;
+  result.c44 = c44_estimate.mean;
+  result.c11_error = c11_estimate.error;
+  result.c12_error = c12_estimate.error;
+  result.c44_error = c44_estimate.error;
+  result.youngs_100_error = mean_and_error_of_blocks(youngs).error;
+  result.bulk_modulus_error = mean_and_error_of_blocks(bulk).error;
+  result.pressure = pressure.mean;
+  result.pressure_error = pressure.error;
+  if (is_static(thermal)) result.pressure = pressure_of(run({0.0, 0.0, 0.0}).front());
+  return result;
+}
+
+}  // namespace pbms::dpd

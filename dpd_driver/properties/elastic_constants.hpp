@@ -1,0 +1,162 @@
+// Cubic elastic constants of the periodic DPD fcc crystal, in process and
+// without I/O, for the dpd_elastic stage and for potential fitting (one call
+// must be cheap and take everything as arguments).
+//
+// Method. The crystal is built with axes x' = [110], y' = [−110], z = [001]
+// (body-centred tetragonal cells a/√2 × a/√2 × a), because an orthogonal
+// periodic box cannot be sheared but this one can be strained
+//   tetragonal, diag(1, 1, 1 ± ε):  C11 = dσzz/dεzz, C12 = dσx'x'/dεzz = dσy'y'/dεzz,
+//   (1 ± ε, 1 ∓ ε, 1):              the shear ε_xy = ±ε of the cubic axes,
+//                                   C44 = d(σx'x' − σy'y')/dε / 4,
+// each by a central difference of the Cauchy stress σ = −(Σ m v⊗v + Σ r_ij⊗f_ij)/V
+// (positive in tension) of the homogeneously strained crystal. fcc is a
+// Bravais lattice, so the strained perfect crystal has no internal
+// relaxation: the static stress is exact for many-body styles (Sutton–Chen)
+// as for pair potentials. At a pressure P ≠ 0 these are the stress–strain
+// coefficients (Wallace) B11 = C11 − P, B12 = C12 + P, B44 = C44 − P, the
+// ones that govern wave speeds; at P = 0 they are the elastic constants.
+//
+// Temperature > 0: each strained state is run by isothermal DPD (velocity
+// Verlet with pair friction, DpdScheme::kVelocityVerlet) at fixed box and
+// its stress averaged over the sampling steps. The +ε and −ε runs use the
+// same seed, so the same initial velocities and the same pair noise: the
+// friction pulls the two trajectories together (noise-induced
+// synchronisation), and the difference σ(+ε) − σ(−ε) carries almost none of
+// the thermal noise of either (for Morse copper at 298 K, per-step C11
+// scatters by 0.6 GPa instead of ~20). Its error is the block standard error
+// of the per-step difference. These are isothermal constants; C11 and C12
+// at constant entropy are larger by T (∂P/∂T)_V² / c_V (C44 is the same),
+// ~0.3 GPa for the copper mesoparticle at 298 K.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/fcc_crystal.hpp"
+#include "kernels/pair_style.hpp"
+
+namespace pbms::dpd {
+
+// A periodic fcc crystal of one particle type.
+struct CrystalSpec {
+  double lattice_constant = 0.0;  // Å, of the conventional cubic cell
+  // At least this many lattice constants along every box edge. 0: the
+  // fewest the neighbour list accepts (box edge ≥ 2 (reach + skin)) in every
+  // state a call builds; the count then depends on the state (compressed
+  // states can need more cells), so a fit that wants results smooth in its
+  // parameters should fix it.
+  int cells = 0;
+  double mass = 0.0;  // g/mol; only used at temperature > 0
+};
+
+// How a state is sampled. temperature 0 is the static perfect crystal and
+// ignores everything else.
+//
+// The defaults are for the copper mesoparticle (508.37 g/mol, Morse of
+// docs/dpd-morse-fit.md), measured in tests/unit/test_dpd_properties.cpp:
+// at 298 K the automatic 3 cells (150 particles in the rotated box) give
+// C11, C12, C44 with standard errors of ~0.05 GPa (0.03 %) in ~1.5 s, and
+// agree with 5 and 6 cells within 0.05 GPa. Accuracy is not the limit: 500
+// sampling steps still give ~0.1 %. The stress difference has a weak tail
+// of correlations out to ~4 ps, so error blocks shorter than that
+// underestimate the error (by ~1/3 at 1 ps); the default blocks are 4 ps.
+struct ThermalSettings {
+  double temperature = 0.0;  // K
+  // g/mol/ps. Sampling only: the canonical averages depend on neither γ nor
+  // the DPD cutoff. With the default cutoff the friction rate γ Σ w_D / m is
+  // ~20/ps for the copper mesoparticle (0.2 per step): equilibration within
+  // 1 ps, tight synchronisation of the ±ε runs, the kinetic temperature
+  // within 0.3 % of the bath; at 4 γ velocity Verlet starts to misbehave.
+  double gamma = 1.0e4;
+  // Å; 0: the crystal's lattice constant, so that the friction and its
+  // costly pair noise (three quarters of a step at a 10 Å cutoff) act on
+  // the 12 nearest neighbours only.
+  double dpd_cutoff = 0.0;
+  double dt = 0.01;  // ps; 0.005 gives the same constants within their errors
+  int equilibration_steps = 200;
+  int sampling_steps = 2000;
+  std::uint64_t seed = 1;
+};
+
+// GPa. Errors are one standard error from block averages (kBlocks blocks of
+// the sampling steps), 0 when static.
+struct ElasticConstants {
+  double c11 = 0.0, c12 = 0.0, c44 = 0.0;
+  double c11_error = 0.0, c12_error = 0.0, c44_error = 0.0;
+  // Of the derived moduli, block by block, so that the correlation of C11
+  // and C12 (the same runs) is accounted for.
+  double youngs_100_error = 0.0, bulk_modulus_error = 0.0;
+  // Of the unstrained state. Static: exact. At temperature: the mean of the
+  // two tetragonal states, high by O(ε²) (~0.001 GPa at the default strain).
+  double pressure = 0.0, pressure_error = 0.0;
+
+  // E⟨100⟩ = (C11 − C12)(C11 + 2 C12)/(C11 + C12).
+  [[nodiscard]] double youngs_100() const { return (c11 - c12) * (c11 + 2.0 * c12) / (c11 + c12); }
+  // (C11 + 2 C12)/3.
+  [[nodiscard]] double bulk_modulus() const { return (c11 + 2.0 * c12) / 3.0; }
+};
+
+// Central differences truncate at O(ε²), and at temperature faster (pairs
+// crossing the cutoff, where Morse forces jump): for Morse copper at 298 K,
+// C44 is 0.7 GPa low at ε = 0.01, 0.06 at 5e-3 and within its 0.02 GPa
+// error at 2e-3. While the ±ε runs stay synchronised the noise of their
+// difference shrinks with ε (checked down to 1e-3), so ε is small; static
+// stresses have no noise, and only round-off (~1e-12 relative) below.
+inline constexpr double kStaticStrain = 1.0e-4;
+inline constexpr double kThermalStrain = 2.0e-3;
+// Blocks of the sampling steps behind every error estimate: few, so that
+// each is long against the correlation time (see ThermalSettings).
+inline constexpr int kBlocks = 5;
+
+// The constants of the crystal at crystal.lattice_constant (at temperature
+// usually zero_pressure_lattice_constant's, isotherm.hpp), from ±strain;
+// strain 0: kStaticStrain or kThermalStrain. Costs four static evaluations
+// (~0.1 ms for copper) or four DPD runs of equilibration + sampling steps
+// (~1 s at the defaults). Not reentrant for one pair style (styles keep
+// per-call state); calls with their own styles may run concurrently.
+// Throws pbms::Error for a non-positive lattice constant, a negative cell
+// count, a strain outside [0, 0.05], invalid thermal settings, or
+// crystal.cells > 0 too few for the neighbour list.
+ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
+                                   const ThermalSettings& thermal, double strain = 0.0);
+
+// ---- building blocks, shared with isotherm.cpp -------------------------------
+
+// Cauchy stress, GPa, positive in tension: xx, yy, zz, xy, xz, yz.
+using Stress = std::array<double, 6>;
+
+// −trace/3, GPa.
+inline double pressure_of(const Stress& s) {
+  return -(s[0] + s[1] + s[2]) / 3.0;
+}
+
+// The DPD cutoff (Å) of a crystal of this lattice constant (Å).
+double friction_cutoff(const ThermalSettings& thermal, double lattice_constant);
+
+// How far (Å) the neighbour list must reach: the larger cutoff plus skin.
+// A periodic box edge must be at least twice this.
+double neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
+                       double lattice_constant);
+
+// The stress of a crystal held in its box (lattice_constant: of its
+// unstrained cells, for the DPD cutoff): one row, the static stress, at
+// temperature 0; otherwise one row per sampling step after the
+// equilibration (Maxwell–Boltzmann velocities at 2T, which equipartition
+// brings to T within a phonon period, then DPD at T). Throws pbms::Error
+// for a box too small for the neighbour list.
+std::vector<Stress> sample_stress(PairStyle& pair, FccCrystal crystal,
+                                  const ThermalSettings& thermal, double lattice_constant);
+
+// Throws pbms::Error, naming the offending field, for invalid settings.
+void check_settings(const CrystalSpec& crystal, const ThermalSettings& thermal);
+
+// Mean and standard error of a series from kBlocks block means (the error
+// is 0 for fewer than kBlocks samples, the static case).
+struct MeanAndError {
+  double mean = 0.0;
+  double error = 0.0;
+};
+MeanAndError block_mean(const std::vector<double>& series);
+
+}  // namespace pbms::dpd

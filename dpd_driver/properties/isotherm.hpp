@@ -1,0 +1,48 @@
+// Points of the pressure–volume isotherm of the periodic DPD fcc crystal,
+// in process and without I/O, for the dpd_isotherm stage and for potential
+// fitting: P at a given volume, the volume at a given pressure, and the
+// zero-pressure lattice constant.
+//
+// The crystal is the cubic one (crystal.cells conventional cells per edge)
+// scaled uniformly; P = −trace σ / 3 with σ from sample_stress
+// (elastic_constants.hpp): static at temperature 0, otherwise the DPD
+// average with its block standard error. Inversions solve the static
+// problem first, which costs microseconds per point, and start the thermal
+// secant from its root with its slope: the thermal pressure varies slowly
+// with volume, so two or three thermal runs usually suffice. All runs of one
+// call share thermal.seed, which makes the sampled P(V) a smooth function of
+// V (and of the pair parameters) for the secant to converge on.
+#pragma once
+
+#include "kernels/pair_style.hpp"
+#include "properties/elastic_constants.hpp"
+
+namespace pbms::dpd {
+
+struct IsothermPoint {
+  double volume_ratio = 1.0;      // V / V0 of the reference crystal
+  double lattice_constant = 0.0;  // Å, of this state
+  double pressure = 0.0;          // GPa
+  double pressure_error = 0.0;    // GPa, block standard error; 0 when static
+};
+
+// The state of volume volume_ratio × V0, V0 that of reference.lattice_constant.
+// Throws pbms::Error for invalid settings, a non-positive ratio, or
+// reference.cells > 0 too few for the compressed box.
+IsothermPoint isotherm_point(PairStyle& pair, const CrystalSpec& reference,
+                             const ThermalSettings& thermal, double volume_ratio);
+
+// The state whose pressure is pressure_gpa, to 1e-6 in the volume ratio or
+// 1e-6 GPa in the pressure (of this seed's sampled P(V): its statistical
+// error is the returned pressure_error). Throws pbms::Error when the secant
+// does not converge, as for a tension beyond the crystal's spinodal, where
+// no such state exists.
+IsothermPoint volume_ratio_at_pressure(PairStyle& pair, const CrystalSpec& reference,
+                                       const ThermalSettings& thermal, double pressure_gpa);
+
+// The lattice constant (Å) of zero pressure at thermal.temperature,
+// starting from start.lattice_constant: volume_ratio_at_pressure at 0 GPa.
+double zero_pressure_lattice_constant(PairStyle& pair, const CrystalSpec& start,
+                                      const ThermalSettings& thermal);
+
+}  // namespace pbms::dpd

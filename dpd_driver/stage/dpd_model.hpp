@@ -1,0 +1,48 @@
+// What a dpd_run or dpd_equilibrate stage simulates, built from its
+// validated parameters: the box, every particle (the same full set on every
+// rank), named groups as bits of each particle's group mask, the pair style
+// of the stage's material and the integrator settings.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "integrators/dpd_integrator.hpp"
+#include "kernels/dpd_particles.hpp"
+#include "kernels/orthogonal_box.hpp"
+#include "kernels/pair_style.hpp"
+
+namespace pbms::dpd {
+
+struct DpdModel {
+  OrthogonalBox box;
+  DpdParticles particles;
+  std::vector<std::string> group_names;  // bit g of group_mask is group_names[g]
+  std::unique_ptr<PairStyle> pair;
+  DpdIntegratorSettings settings;
+  std::uint32_t prescribed_mask = 0;        // rigid and frozen groups
+  std::vector<std::uint32_t> rigid_bodies;  // free rigid bodies, one group each
+
+  // Throws pbms::Error naming the known groups when `name` is unknown.
+  [[nodiscard]] std::uint32_t group_mask(const std::string& name) const;
+};
+
+// The pair style a dpd_mesoparticle material's resolved `potential` map
+// describes (PairStyleRegistry checks the numbers again).
+[[nodiscard]] std::unique_ptr<PairStyle> pair_style_from_yaml(const YAML::Node& potential);
+
+// The final state of a stage, kept in the driver process for a later
+// stage's `initial: {from_stage: ...}`. Every rank holds the full set.
+void keep_final_state(const std::string& stage, DpdParticles all);
+
+// `seed` keys the initial velocities. Throws pbms::Error for more than 32
+// groups, a reused name, an unknown group in `motion`, an empty system, or
+// an unknown from_stage.
+[[nodiscard]] DpdModel build_dpd_model(const YAML::Node& params, const YAML::Node& material,
+                                       std::uint64_t seed, const std::string& stage);
+
+}  // namespace pbms::dpd

@@ -1,0 +1,47 @@
+// The probes of a DPD stage: named columns sampled every N steps. Each
+// probe adds this rank's share to sums (and minima/maxima for extents);
+// the stage reduces them over ranks and turns them into column values.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "dpd_model.hpp"
+#include "engine/dpd_engine.hpp"
+
+namespace pbms::dpd {
+
+class DpdProbes {
+ public:
+  DpdProbes(const YAML::Node& probes, const DpdModel& model);
+
+  [[nodiscard]] const std::vector<std::string>& columns() const { return columns_; }
+  [[nodiscard]] const std::vector<std::string>& units() const { return units_; }
+  [[nodiscard]] bool needs_potential() const { return needs_potential_; }
+
+  // Collective: samples every probe (all ranks call it).
+  [[nodiscard]] std::vector<double> sample(DpdEngine& engine, ThermoState& thermo);
+
+  // Centre of mass (unwrapped) of a group, all ranks; used by analyses too.
+  [[nodiscard]] static Vec3 centre_of_mass(const DpdEngine& engine, std::uint32_t mask);
+  // Largest minus smallest coordinate of a group along an axis.
+  [[nodiscard]] static double extent(const DpdEngine& engine, std::uint32_t mask, int axis);
+
+ private:
+  enum class Kind { kTemperature, kPressure, kEnergy, kMomentum, kSlab, kForce, kExtent };
+  struct Probe {
+    Kind kind;
+    std::uint32_t mask = 0;
+    int axis = 0;
+    Vec3 reference{};  // slab: centre of mass at the first sample
+    bool has_reference = false;
+  };
+  std::vector<Probe> probes_;
+  std::vector<std::string> columns_, units_;
+  bool needs_potential_ = false;
+};
+
+}  // namespace pbms::dpd

@@ -1,0 +1,228 @@
+#include "dpd_properties_stages.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "dpd_model.hpp"
+#include "pbms/error.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
+#include "properties/elastic_constants.hpp"
+#include "properties/isotherm.hpp"
+
+namespace pbms::dpd {
+
+using config::OutputSpec;
+using config::Param;
+using units::Dimension;
+
+namespace {
+
+std::vector<Param> crystal_params() {
+  return {
+      Param::identifier("material", "A dpd_mesoparticle material").require().material(),
+      Param::real("temperature", Dimension::kTemperature,
+                  "0: the static crystal; above: isothermal DPD sampling")
+          .def(298.0)
+          .at_least(0),
+      Param::integer("cells",
+                     "Crystal size in lattice constants per edge; 0: the fewest the "
+                     "cutoff allows")
+          .def(0)
+          .at_least(0),
+      Param::real("gamma", Dimension::kNone,
+                  "Sampling friction, g/mol/ps (canonical averages do not depend on it)")
+          .def(1.0e4)
+          .above(0),
+      Param::real("time_step", Dimension::kTime, "Time step of the sampling runs")
+          .def(0.01)
+          .above(0),
+      Param::integer("equilibration_steps", "Steps before sampling, per state")
+          .def(200)
+          .at_least(0),
+      Param::integer("sampling_steps", "Steps sampled, per state").def(1000).at_least(10),
+      Param::boolean("zero_pressure",
+                     "Use the lattice constant of zero pressure at `temperature` instead of the "
+                     "material's")
+          .def(true),
+  };
+}
+
+struct Crystal {
+  std::unique_ptr<PairStyle> pair;
+  CrystalSpec spec;
+  ThermalSettings thermal;
+};
+
+Crystal crystal_from(StageContext& ctx) {
+  const YAML::Node& p = ctx.params();
+  const YAML::Node material = ctx.material(p["material"].as<std::string>());
+  Crystal c;
+  c.pair = pair_style_from_yaml(material["potential"]);
+  c.spec.lattice_constant = material["lattice_constant"].as<double>();
+  c.spec.cells = p["cells"].as<int>();
+  c.spec.mass = material["mass"].as<double>();
+  c.thermal.temperature = p["temperature"].as<double>();
+  c.thermal.gamma = p["gamma"].as<double>();
+  c.thermal.dt = p["time_step"].as<double>();
+  c.thermal.equilibration_steps = p["equilibration_steps"].as<int>();
+  c.thermal.sampling_steps = p["sampling_steps"].as<int>();
+  c.thermal.seed = ctx.seed();
+  return c;
+}
+
+// Runs `work` on rank 0; a failure there reaches every rank, so that the
+// job ends with rank 0's message rather than a hang.
+template <class Work>
+void on_rank_zero(StageContext& ctx, Work work) {
+  std::string failure;
+  if (ctx.rank() == 0) {
+    try {
+      work();
+    } catch (const Error& e) {
+      failure = e.what();
+    }
+  }
+  int length = static_cast<int>(failure.size());
+  mpi::bcast_gently(&length, 1, MPI_INT, 0, ctx.comm());
+  failure.resize(static_cast<std::size_t>(length));
+  mpi::bcast_gently(failure.data(), length, MPI_CHAR, 0, ctx.comm());
+  if (!failure.empty()) throw Error(failure);
+}
+
+}  // namespace
+
+config::StageKindSpec DpdElasticStage::spec() {
+  config::StageKindSpec s;
+  s.kind = "dpd_elastic";
+  s.program = "dpd_driver";
+  s.doc =
+      "C11, C12, C44 of the periodic DPD fcc crystal, static or at a temperature, and the "
+      "wave speeds they give";
+  s.material_kinds = {"dpd_mesoparticle"};
+  s.params = crystal_params();
+  s.outputs = {
+      {"c11", OutputSpec::Shape::kScalar, "GPa", "C11"},
+      {"c12", OutputSpec::Shape::kScalar, "GPa", "C12"},
+      {"c44", OutputSpec::Shape::kScalar, "GPa", "C44"},
+      {"c11_error", OutputSpec::Shape::kScalar, "GPa", "Standard error of C11"},
+      {"c12_error", OutputSpec::Shape::kScalar, "GPa", "Standard error of C12"},
+      {"c44_error", OutputSpec::Shape::kScalar, "GPa", "Standard error of C44"},
+      {"youngs_modulus_100", OutputSpec::Shape::kScalar, "GPa",
+       "E<100> = (C11 - C12)(C11 + 2 C12)/(C11 + C12)"},
+      {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa", "(C11 + 2 C12)/3"},
+      {"lattice_constant", OutputSpec::Shape::kScalar, "Å", "Lattice constant used"},
+      {"density", OutputSpec::Shape::kScalar, "kg/m^3", "Mass density of that crystal"},
+      {"longitudinal_speed", OutputSpec::Shape::kScalar, "m/s", "sqrt(C11 / rho), along [100]"},
+      {"bar_speed", OutputSpec::Shape::kScalar, "m/s", "sqrt(E<100> / rho), thin [100] bar"},
+      {"pressure", OutputSpec::Shape::kScalar, "GPa", "Pressure of the unstrained crystal"},
+  };
+  return s;
+}
+
+void DpdElasticStage::run(StageContext& ctx) {
+  on_rank_zero(ctx, [&] {
+    Crystal c = crystal_from(ctx);
+    if (ctx.params()["zero_pressure"].as<bool>()) {
+      c.spec.lattice_constant = zero_pressure_lattice_constant(*c.pair, c.spec, c.thermal);
+    }
+    const ElasticConstants e = elastic_constants(*c.pair, c.spec, c.thermal);
+    const double a = c.spec.lattice_constant;
+    // 4 particles per cubic cell; g/mol/Å^3 to kg/m^3.
+    const double rho = 4.0 * c.spec.mass / (a * a * a) * units::kGramPerCm3PerAmuPerA3 * 1000.0;
+    auto& r = ctx.results();
+    r.add_scalar("c11", e.c11, "GPa");
+    r.add_scalar("c12", e.c12, "GPa");
+    r.add_scalar("c44", e.c44, "GPa");
+    r.add_scalar("c11_error", e.c11_error, "GPa");
+    r.add_scalar("c12_error", e.c12_error, "GPa");
+    r.add_scalar("c44_error", e.c44_error, "GPa");
+    r.add_scalar("youngs_modulus_100", e.youngs_100(), "GPa");
+    r.add_scalar("bulk_modulus", e.bulk_modulus(), "GPa");
+    r.add_scalar("lattice_constant", a, "Å");
+    r.add_scalar("density", rho, "kg/m^3");
+    r.add_scalar("longitudinal_speed", std::sqrt(e.c11 * 1e9 / rho), "m/s");
+    r.add_scalar("bar_speed", std::sqrt(e.youngs_100() * 1e9 / rho), "m/s");
+    r.add_scalar("pressure", e.pressure, "GPa");
+  });
+}
+
+config::StageKindSpec DpdIsothermStage::spec() {
+  config::StageKindSpec s;
+  s.kind = "dpd_isotherm";
+  s.program = "dpd_driver";
+  s.doc =
+      "Pressure against V/V0 of the periodic DPD crystal at a temperature, over a ladder of "
+      "volume ratios or pressures";
+  s.material_kinds = {"dpd_mesoparticle"};
+  s.params = crystal_params();
+  s.params.push_back(Param::real_list("volume_ratios", Dimension::kNone,
+                                      "V/V0 of each state (V0: the zero-pressure crystal)")
+                         .length(1, 100));
+  s.params.push_back(Param::real_list("pressures", Dimension::kPressure,
+                                      "Pressures of each state (the volume is solved for)")
+                         .length(1, 100));
+  s.outputs = {
+      {"lattice_constant", OutputSpec::Shape::kScalar, "Å", "Reference (V0) lattice constant"},
+      {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa",
+       "-V dP/dV at the two states nearest V/V0 = 1"},
+      {"isotherm", OutputSpec::Shape::kTable, "", "volume_ratio, pressure, pressure_error"},
+  };
+  return s;
+}
+
+void DpdIsothermStage::run(StageContext& ctx) {
+  const YAML::Node& p = ctx.params();
+  if (static_cast<bool>(p["volume_ratios"]) == static_cast<bool>(p["pressures"])) {
+    throw Error(
+        fmt::format("stage '{}': give `volume_ratios` or `pressures` (one of them)", ctx.stage()));
+  }
+  on_rank_zero(ctx, [&] {
+    Crystal c = crystal_from(ctx);
+    if (p["zero_pressure"].as<bool>()) {
+      c.spec.lattice_constant = zero_pressure_lattice_constant(*c.pair, c.spec, c.thermal);
+    }
+    std::vector<double> ratio, pressure, error;
+    if (p["volume_ratios"]) {
+      for (const double v : p["volume_ratios"].as<std::vector<double>>()) {
+        const IsothermPoint q = isotherm_point(*c.pair, c.spec, c.thermal, v);
+        ratio.push_back(q.volume_ratio);
+        pressure.push_back(q.pressure);
+        error.push_back(q.pressure_error);
+      }
+    } else {
+      for (const double bar : p["pressures"].as<std::vector<double>>()) {
+        const IsothermPoint q =
+            volume_ratio_at_pressure(*c.pair, c.spec, c.thermal, bar / units::kBarPerGPa);
+        ratio.push_back(q.volume_ratio);
+        pressure.push_back(q.pressure);
+        error.push_back(q.pressure_error);
+      }
+    }
+    auto& r = ctx.results();
+    r.add_scalar("lattice_constant", c.spec.lattice_constant, "Å");
+    if (ratio.size() >= 2) {
+      // Secant through the two states nearest V0.
+      std::size_t a = 0, b = 1;
+      for (std::size_t k = 0; k < ratio.size(); ++k) {
+        if (std::abs(ratio[k] - 1.0) < std::abs(ratio[a] - 1.0)) a = k;
+      }
+      b = a == 0 ? 1 : a - 1;
+      for (std::size_t k = 0; k < ratio.size(); ++k) {
+        if (k != a && std::abs(ratio[k] - 1.0) < std::abs(ratio[b] - 1.0)) b = k;
+      }
+      if (ratio[a] != ratio[b]) {
+        r.add_scalar(
+            "bulk_modulus",
+            -0.5 * (ratio[a] + ratio[b]) * (pressure[a] - pressure[b]) / (ratio[a] - ratio[b]),
+            "GPa");
+      }
+    }
+    r.add_column("isotherm", "volume_ratio", "1", ratio);
+    r.add_column("isotherm", "pressure", "GPa", pressure);
+    r.add_column("isotherm", "pressure_error", "GPa", error);
+  });
+}
+
+}  // namespace pbms::dpd

@@ -1,0 +1,367 @@
+#include "dpd_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "dpd_model.hpp"
+#include "dpd_probes.hpp"
+#include "engine/dpd_engine.hpp"
+#include "pbms/analysis/statistics.hpp"
+#include "pbms/error.hpp"
+#include "pbms/io/h5md_writer.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::dpd {
+namespace {
+
+enum class Mode { kFree, kImpact, kTension, kEquilibrate };
+
+// FNV-1a: a stage's noise stream differs from every other stage's of the
+// same run seed, and is the same on every machine.
+std::uint64_t stage_seed(std::uint64_t seed, const std::string& stage) {
+  std::uint64_t h = 1469598103934665603ULL ^ seed;
+  for (const char c : stage) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+int axis_of(const YAML::Node& n) {
+  const auto a = n.as<std::string>();
+  return a == "x" ? 0 : a == "y" ? 1 : 2;
+}
+
+// Rows of `width` doubles from every rank, on every rank, sorted by the
+// first value (a global id).
+std::vector<double> gather_sorted(MPI_Comm comm, const std::vector<double>& local,
+                                  std::size_t width, bool to_all) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int n = static_cast<int>(local.size());
+  std::vector<int> counts(static_cast<std::size_t>(size)), displs(counts.size());
+  mpi::check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm), "MPI_Allgather");
+  int total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    displs[r] = total;
+    total += counts[r];
+  }
+  std::vector<double> all;
+  if (to_all || rank == 0) all.resize(static_cast<std::size_t>(total));
+  if (to_all) {
+    mpi::check(MPI_Allgatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                              MPI_DOUBLE, comm),
+               "MPI_Allgatherv");
+  } else {
+    mpi::check(MPI_Gatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                           MPI_DOUBLE, 0, comm),
+               "MPI_Gatherv");
+  }
+  const std::size_t rows = all.size() / width;
+  std::vector<std::size_t> order(rows);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all[a * width] < all[b * width]; });
+  std::vector<double> out;
+  out.reserve(all.size());
+  for (const std::size_t i : order) {
+    out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(i * width),
+               all.begin() + static_cast<std::ptrdiff_t>((i + 1) * width));
+  }
+  return out;
+}
+
+// The time a series first exceeds `threshold`, interpolated between samples;
+// NaN if it never does.
+double first_crossing(const std::vector<double>& t, const std::vector<double>& s,
+                      double threshold) {
+  for (std::size_t k = 1; k < s.size(); ++k) {
+    if (s[k] >= threshold && s[k - 1] < threshold) {
+      return t[k - 1] + (threshold - s[k - 1]) / (s[k] - s[k - 1]) * (t[k] - t[k - 1]);
+    }
+  }
+  return std::nan("");
+}
+
+void run_stage(StageContext& ctx, Mode mode) {
+  const YAML::Node& p = ctx.params();
+  const int rank = ctx.rank();
+  const YAML::Node material = ctx.material(p["material"].as<std::string>());
+  DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
+  const double lattice_constant = material["lattice_constant"].as<double>();
+  const std::uint32_t prescribed = model.prescribed_mask;
+  const std::vector<std::uint32_t> rigid_bodies = model.rigid_bodies;
+  DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
+                   std::move(model.particles));
+  engine.set_prescribed_groups(prescribed);
+  engine.set_rigid_bodies(rigid_bodies);
+
+  const auto steps = p["steps"].as<std::int64_t>();
+  const auto sample_every = p["sample_every"].as<std::int64_t>();
+  const auto particles_every = p["particles_every"].as<std::int64_t>();
+  const bool write_forces = p["write_forces"].as<bool>();
+  const bool write_u = p["write_internal_energy"].as<bool>();
+  const double dt = model.settings.dt;
+  const double target_t = mode == Mode::kEquilibrate ? p["target_temperature"].as<double>() : 0.0;
+  const double tau = mode == Mode::kEquilibrate ? p["tau"].as<double>() : 0.0;
+
+  DpdProbes probes(p["probes"], model);
+  std::vector<std::vector<double>> samples(probes.columns().size());
+  std::vector<double> sample_step, sample_time, temperatures;
+
+  // Impact: the two slabs' centre-of-mass displacement along the axis.
+  std::uint32_t near_mask = 0, far_mask = 0;
+  int impact_axis = 0;
+  Vec3 near0{}, far0{};
+  std::vector<double> slab_t, near_s, far_s;
+  if (mode == Mode::kImpact) {
+    if (!p["impact"])
+      throw Error(fmt::format("stage '{}': mode impact needs `impact`", ctx.stage()));
+    near_mask = model.group_mask(p["impact"]["near_slab"].as<std::string>());
+    far_mask = model.group_mask(p["impact"]["far_slab"].as<std::string>());
+    impact_axis = axis_of(p["impact"]["axis"]);
+    near0 = DpdProbes::centre_of_mass(engine, near_mask);
+    far0 = DpdProbes::centre_of_mass(engine, far_mask);
+  }
+  // Tension: specimen length and conservative virial stress.
+  std::uint32_t specimen_mask = 0;
+  int tension_axis = 0;
+  double area = 0.0, length0 = 0.0;
+  std::vector<double> strain, stress;
+  if (mode == Mode::kTension) {
+    if (!p["tension"]) {
+      throw Error(fmt::format("stage '{}': mode tension needs `tension`", ctx.stage()));
+    }
+    specimen_mask = model.group_mask(p["tension"]["specimen"].as<std::string>());
+    tension_axis = axis_of(p["tension"]["axis"]);
+    // An fcc crystal of n cells spans n a; its outermost sites, n a − a/2.
+    const double plane = 0.5 * lattice_constant;
+    length0 = DpdProbes::extent(engine, specimen_mask, tension_axis) + plane;
+    if (p["tension"]["area"]) {
+      area = p["tension"]["area"].as<double>();
+    } else {
+      area = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        if (a != tension_axis) area *= DpdProbes::extent(engine, specimen_mask, a) + plane;
+      }
+    }
+  }
+
+  // H5MD trajectory, gathered on rank 0 in id order.
+  std::unique_ptr<H5mdWriter> h5md;
+  const OrthogonalBox& box = engine.domain().box();
+  const std::array<double, 3> edges{box.length(0), box.length(1), box.length(2)};
+  const std::size_t width = 8 + (write_forces ? 3 : 0) + (write_u ? 1 : 0);
+  auto local_rows = [&]() {
+    const DpdParticles& q = engine.particles();
+    std::vector<double> rows;
+    rows.reserve(engine.owned() * width);
+    for (std::size_t i = 0; i < engine.owned(); ++i) {
+      rows.insert(rows.end(), {static_cast<double>(q.id[i]), static_cast<double>(q.type[i]),
+                               q.x[i][0], q.x[i][1], q.x[i][2], q.v[i][0], q.v[i][1], q.v[i][2]});
+      if (write_forces) rows.insert(rows.end(), {q.f[i][0], q.f[i][1], q.f[i][2]});
+      if (write_u) rows.push_back(q.internal_energy[i]);
+    }
+    return rows;
+  };
+  auto write_frame = [&](std::int64_t step) {
+    const auto all = gather_sorted(ctx.comm(), local_rows(), width, false);
+    if (rank != 0) return;
+    const std::size_t n = all.size() / width;
+    if (!h5md) {
+      H5mdWriter::Options o;
+      o.path = (ctx.stage_dir() / "particles.h5md").string();
+      o.creator_version = "dpd_driver";
+      o.periodic = box.periodic;
+      o.velocities = true;
+      o.forces = write_forces;
+      o.internal_energy = write_u;
+      std::vector<std::int64_t> ids(n);
+      std::vector<int> species(n);
+      for (std::size_t r = 0; r < n; ++r) {
+        ids[r] = static_cast<std::int64_t>(all[r * width]);
+        species[r] = static_cast<int>(all[r * width + 1]);
+      }
+      h5md = std::make_unique<H5mdWriter>(MPI_COMM_SELF, o, ids, species);
+    }
+    std::vector<double> x, v, f, u;
+    for (std::size_t r = 0; r < n; ++r) {
+      const double* row = &all[r * width];
+      x.insert(x.end(), row + 2, row + 5);
+      v.insert(v.end(), row + 5, row + 8);
+      if (write_forces) f.insert(f.end(), row + 8, row + 11);
+      if (write_u) u.push_back(row[width - 1]);
+    }
+    h5md->write_frame(step, static_cast<double>(step) * dt, edges, x, v, f, u);
+  };
+
+  ThermoState thermo;
+  auto sample = [&](std::int64_t step) {
+    thermo = engine.thermo(probes.needs_potential() || mode == Mode::kTension);
+    const auto values = probes.sample(engine, thermo);
+    for (std::size_t c = 0; c < values.size(); ++c) samples[c].push_back(values[c]);
+    const double t = static_cast<double>(step) * dt;
+    sample_step.push_back(static_cast<double>(step));
+    sample_time.push_back(t);
+    if (step > 0) temperatures.push_back(thermo.temperature);
+    if (mode == Mode::kTension) {
+      const double length =
+          DpdProbes::extent(engine, specimen_mask, tension_axis) + 0.5 * lattice_constant;
+      strain.push_back((length - length0) / length0);
+      // Tension positive: σ = −W / V, eV/Å^3 to GPa.
+      stress.push_back(-thermo.virial[static_cast<std::size_t>(tension_axis)] / (area * length) *
+                       units::kBarPerEvPerA3 / units::kBarPerGPa);
+    }
+  };
+  auto track_slabs = [&](std::int64_t step) {
+    const Vec3 a = DpdProbes::centre_of_mass(engine, near_mask);
+    const Vec3 b = DpdProbes::centre_of_mass(engine, far_mask);
+    slab_t.push_back(static_cast<double>(step) * dt);
+    near_s.push_back(a[impact_axis] - near0[impact_axis]);
+    far_s.push_back(b[impact_axis] - far0[impact_axis]);
+  };
+
+  sample(0);
+  const ThermoState initial = thermo.potential != 0.0 ? thermo : engine.thermo(true);
+  if (mode == Mode::kImpact) track_slabs(0);
+  if (particles_every > 0 || steps == 0) write_frame(0);
+  const auto started = std::chrono::steady_clock::now();
+  for (std::int64_t n = 1; n <= steps; ++n) {
+    set_current_step(n);
+    engine.step();
+    if (mode == Mode::kEquilibrate) engine.berendsen(target_t, tau);
+    if (mode == Mode::kImpact) track_slabs(n);
+    if (n % sample_every == 0 || n == steps) sample(n);
+    if ((particles_every > 0 && n % particles_every == 0) || n == steps) write_frame(n);
+    ctx.progress(n, steps, static_cast<double>(n) * dt, "dpd");
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const ThermoState last = engine.thermo(true);
+
+  // The final state, for a later stage's initial.from_stage.
+  {
+    const auto all = gather_sorted(ctx.comm(), local_rows(), width, true);
+    DpdParticles state;
+    state.mass_per_type = engine.particles().mass_per_type;
+    for (std::size_t r = 0; r + width <= all.size(); r += width) {
+      state.add(static_cast<std::int64_t>(all[r]), static_cast<int>(all[r + 1]),
+                {all[r + 2], all[r + 3], all[r + 4]}, {all[r + 5], all[r + 6], all[r + 7]});
+      if (write_u) state.internal_energy.back() = all[r + width - 1];
+    }
+    if (!write_u) {
+      // Internal energies travel only when written; carry them otherwise too.
+      std::vector<double> rows;
+      const DpdParticles& q = engine.particles();
+      for (std::size_t i = 0; i < engine.owned(); ++i) {
+        rows.insert(rows.end(), {static_cast<double>(q.id[i]), q.internal_energy[i]});
+      }
+      const auto u = gather_sorted(ctx.comm(), rows, 2, true);
+      for (std::size_t r = 0; r < state.size(); ++r) state.internal_energy[r] = u[2 * r + 1];
+    }
+    keep_final_state(ctx.stage(), std::move(state));
+  }
+
+  auto& r = ctx.results();
+  r.add_scalar("steps", static_cast<double>(steps), "1");
+  r.add_scalar("particles", static_cast<double>(engine.total_particles()), "1");
+  r.add_scalar("temperature", last.temperature, "K");
+  if (!temperatures.empty()) {
+    r.add_scalar("mean_temperature",
+                 std::accumulate(temperatures.begin(), temperatures.end(), 0.0) /
+                     static_cast<double>(temperatures.size()),
+                 "K");
+  }
+  r.add_scalar("potential_energy", last.potential, "eV");
+  r.add_scalar("total_energy", last.total(), "eV");
+  r.add_scalar("energy_drift",
+               (last.total() - initial.total()) / std::max(std::abs(initial.total()), 1e-300), "1");
+  r.add_scalar("pressure", (last.pressure[0] + last.pressure[1] + last.pressure[2]) / 3.0, "bar");
+  if (steps > 0 && seconds > 0.0) {
+    r.add_scalar("steps_per_second", static_cast<double>(steps) / seconds, "1/s");
+  }
+  r.add_column("probes", "step", "1", sample_step);
+  r.add_column("probes", "time", "ps", sample_time);
+  for (std::size_t c = 0; c < samples.size(); ++c) {
+    r.add_column("probes", probes.columns()[c], probes.units()[c], samples[c]);
+  }
+  if (mode == Mode::kImpact) {
+    const double threshold = p["impact"]["threshold"].as<double>();
+    const double t_near = first_crossing(slab_t, near_s, threshold);
+    const double t_far = first_crossing(slab_t, far_s, threshold);
+    r.add_column("slabs", "time", "ps", slab_t);
+    r.add_column("slabs", "near_displacement", "Å", near_s);
+    r.add_column("slabs", "far_displacement", "Å", far_s);
+    if (t_far > t_near) {
+      const double distance = std::abs(far0[impact_axis] - near0[impact_axis]);
+      // Å/ps is 100 m/s.
+      r.add_scalar("wave_speed", distance / (t_far - t_near) * 100.0, "m/s");
+      r.add_scalar("first_motion_near", t_near, "ps");
+      r.add_scalar("first_motion_far", t_far, "ps");
+    } else {
+      // The slab histories are kept; the summary says why there is no speed.
+      r.attributes["wave_speed"] = fmt::format(
+          "not measured: the wave did not reach both slabs (first motion near {:.4g} ps, far "
+          "{:.4g} ps); run longer or lower impact.threshold",
+          t_near, t_far);
+    }
+  }
+  if (mode == Mode::kTension) {
+    // The elastic part ends at the yield point, the stress maximum, unless
+    // the config bounds it.
+    const auto peak =
+        static_cast<std::size_t>(std::max_element(stress.begin(), stress.end()) - stress.begin());
+    const double fit_strain = p["tension"]["fit_strain"] ? p["tension"]["fit_strain"].as<double>()
+                                                         : (strain.empty() ? 0.0 : strain[peak]);
+    std::vector<double> fx, fy;
+    for (std::size_t k = 0; k < strain.size(); ++k) {
+      if (strain[k] <= fit_strain) {
+        fx.push_back(strain[k]);
+        fy.push_back(stress[k]);
+      }
+    }
+    if (fx.size() < 3) {
+      throw Error(fmt::format(
+          "stage '{}': fewer than 3 samples up to a strain of {:.4g}; run longer or sample "
+          "more often",
+          ctx.stage(), fit_strain));
+    }
+    r.add_scalar("fit_strain", fit_strain, "1");
+    if (!p["tension"]["fit_strain"] && peak + 1 == stress.size()) {
+      r.attributes["tension_note"] =
+          "the stress was still rising at the end: no yield point, the fit covers the whole run";
+    }
+    const auto fit = analysis::fit_line(fx, fy);
+    r.add_scalar("youngs_modulus", fit.slope, "GPa");
+    r.add_scalar("max_stress", *std::max_element(stress.begin(), stress.end()), "GPa");
+    r.add_column("tension_curve", "strain", "1", strain);
+    r.add_column("tension_curve", "stress", "GPa", stress);
+    r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area);
+  }
+  r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],
+                                              engine.domain().dims()[1], engine.domain().dims()[2]);
+  r.attributes["neighbour_list_builds"] = fmt::format("{}", engine.rebuilds());
+  if (h5md) r.files.push_back((std::filesystem::path(ctx.stage()) / "particles.h5md").string());
+}
+
+}  // namespace
+
+void DpdRunStage::run(StageContext& ctx) {
+  const auto mode = ctx.params()["mode"].as<std::string>();
+  run_stage(ctx, mode == "impact"    ? Mode::kImpact
+                 : mode == "tension" ? Mode::kTension
+                                     : Mode::kFree);
+}
+
+void DpdEquilibrateStage::run(StageContext& ctx) {
+  run_stage(ctx, Mode::kEquilibrate);
+}
+
+}  // namespace pbms::dpd
