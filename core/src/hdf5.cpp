@@ -43,7 +43,16 @@ Handle open_or_create(const std::string& path, MPI_Comm comm) {
 }
 
 bool exists(hid_t parent, const std::string& name) {
-  return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0;
+  // H5Lexists fails, printing an error stack, when an intermediate group of
+  // a path is missing: test "a", then "a/b", then "a/b/c".
+  std::size_t end = 0;
+  while (end != std::string::npos) {
+    end = name.find('/', end + 1);
+    const std::string prefix = name.substr(0, end);
+    if (prefix.empty()) continue;
+    if (H5Lexists(parent, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+  }
+  return true;
 }
 
 void delete_link_if_exists(hid_t parent, const std::string& name) {

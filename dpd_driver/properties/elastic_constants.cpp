@@ -65,7 +65,8 @@ int cells_for(double edge, double shrink, double reach, int at_least) {
   return std::max(needed, at_least);
 }
 
-Stress instantaneous_stress(const DpdParticles& particles, const PairResult& pair, double volume) {
+CauchyStress instantaneous_stress(const DpdParticles& particles, const PairResult& pair,
+                                  double volume) {
   std::array<double, 6> kinetic{};
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3& v = particles.v[i];
@@ -77,7 +78,7 @@ Stress instantaneous_stress(const DpdParticles& particles, const PairResult& pai
     kinetic[4] += m * v[0] * v[2];
     kinetic[5] += m * v[1] * v[2];
   }
-  Stress s{};
+  CauchyStress s{};
   const double scale = -kGpaPerEvPerA3 / volume;
   for (int c = 0; c < 6; ++c) s[c] = scale * (kinetic[c] * units::kMvv2e + pair.virial[c]);
   return s;
@@ -100,8 +101,8 @@ std::vector<double> block_means(const std::vector<double>& series) {
   return means;
 }
 
-MeanAndError mean_and_error_of_blocks(const std::vector<double>& blocks) {
-  MeanAndError r;
+BlockAverage mean_and_error_of_blocks(const std::vector<double>& blocks) {
+  BlockAverage r;
   for (const double b : blocks) r.mean += b;
   r.mean /= static_cast<double>(blocks.size());
   if (blocks.size() < 2) return r;
@@ -113,8 +114,8 @@ MeanAndError mean_and_error_of_blocks(const std::vector<double>& blocks) {
 }
 
 // The per-sample stress differences σ(+ε) − σ(−ε) of a ± pair, component c.
-std::vector<double> difference(const std::vector<Stress>& plus, const std::vector<Stress>& minus,
-                               int c) {
+std::vector<double> difference(const std::vector<CauchyStress>& plus,
+                               const std::vector<CauchyStress>& minus, int c) {
   std::vector<double> d(plus.size());
   for (std::size_t k = 0; k < plus.size(); ++k) d[k] = plus[k][c] - minus[k][c];
   return d;
@@ -122,17 +123,17 @@ std::vector<double> difference(const std::vector<Stress>& plus, const std::vecto
 
 }  // namespace
 
-double friction_cutoff(const ThermalSettings& thermal, double lattice_constant) {
+double sampling_dpd_cutoff(const ThermalSettings& thermal, double lattice_constant) {
   return thermal.dpd_cutoff > 0.0 ? thermal.dpd_cutoff : lattice_constant;
 }
 
-double neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
-                       double lattice_constant) {
+double sampling_neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
+                                double lattice_constant) {
   if (is_static(thermal)) return pair.cutoff();
-  return std::max(pair.cutoff(), friction_cutoff(thermal, lattice_constant)) + kSkin;
+  return std::max(pair.cutoff(), sampling_dpd_cutoff(thermal, lattice_constant)) + kSkin;
 }
 
-void check_settings(const CrystalSpec& crystal, const ThermalSettings& thermal) {
+void check_property_settings(const CrystalSpec& crystal, const ThermalSettings& thermal) {
   const std::string where = "DPD crystal properties: ";
   if (!(crystal.lattice_constant > 0.0)) throw Error(where + "lattice_constant must be > 0 Å");
   if (crystal.cells < 0) throw Error(where + "cells must be >= 0 (0: automatic)");
@@ -151,12 +152,12 @@ void check_settings(const CrystalSpec& crystal, const ThermalSettings& thermal) 
   }
 }
 
-MeanAndError block_mean(const std::vector<double>& series) {
+BlockAverage block_average(const std::vector<double>& series) {
   return mean_and_error_of_blocks(block_means(series));
 }
 
-std::vector<Stress> sample_stress(PairStyle& pair, FccCrystal crystal,
-                                  const ThermalSettings& thermal, double lattice_constant) {
+std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
+                                        const ThermalSettings& thermal, double lattice_constant) {
   DpdParticles& particles = crystal.particles;
   const double volume = crystal.box.volume();
   if (is_static(thermal)) {
@@ -171,11 +172,11 @@ std::vector<Stress> sample_stress(PairStyle& pair, FccCrystal crystal,
   settings.scheme = DpdScheme::kVelocityVerlet;
   settings.dt = thermal.dt;
   settings.skin = kSkin;
-  settings.friction = {thermal.gamma, friction_cutoff(thermal, lattice_constant),
+  settings.friction = {thermal.gamma, sampling_dpd_cutoff(thermal, lattice_constant),
                        thermal.temperature, thermal.seed};
   DpdIntegrator integrator(particles, crystal.box, pair, settings);
   for (int s = 0; s < thermal.equilibration_steps; ++s) integrator.step();
-  std::vector<Stress> samples;
+  std::vector<CauchyStress> samples;
   samples.reserve(static_cast<std::size_t>(thermal.sampling_steps));
   for (int s = 0; s < thermal.sampling_steps; ++s) {
     const PairResult result = integrator.step(Tally::kEnergyAndVirial);
@@ -186,13 +187,13 @@ std::vector<Stress> sample_stress(PairStyle& pair, FccCrystal crystal,
 
 ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
                                    const ThermalSettings& thermal, double strain) {
-  check_settings(crystal, thermal);
+  check_property_settings(crystal, thermal);
   if (!(strain >= 0.0 && strain <= 0.05)) {
     throw Error("DPD elastic constants: strain must be in [0, 0.05] (0: the default)");
   }
   if (strain == 0.0) strain = is_static(thermal) ? kStaticStrain : kThermalStrain;
   const double a = crystal.lattice_constant;
-  const double reach = neighbour_reach(pair, thermal, a);
+  const double reach = sampling_neighbour_reach(pair, thermal, a);
   const int at_least_z = crystal.cells;
   const int at_least_xy = static_cast<int>(std::ceil(crystal.cells * std::numbers::sqrt2 - 1e-9));
   const int cells_z = cells_for(a, 1.0 - strain, reach, at_least_z);
@@ -210,10 +211,10 @@ ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
     apply_strain(strained, e);
     return sample_stress(pair, std::move(strained), thermal, a);
   };
-  const std::vector<Stress> tetragonal_plus = run({0.0, 0.0, strain});
-  const std::vector<Stress> tetragonal_minus = run({0.0, 0.0, -strain});
-  const std::vector<Stress> shear_plus = run({strain, -strain, 0.0});
-  const std::vector<Stress> shear_minus = run({-strain, strain, 0.0});
+  const std::vector<CauchyStress> tetragonal_plus = run({0.0, 0.0, strain});
+  const std::vector<CauchyStress> tetragonal_minus = run({0.0, 0.0, -strain});
+  const std::vector<CauchyStress> shear_plus = run({strain, -strain, 0.0});
+  const std::vector<CauchyStress> shear_minus = run({-strain, strain, 0.0});
 
   // Per-sample estimates, then blocks: errors of derived quantities then
   // carry the covariances of the constants they combine.
@@ -240,10 +241,10 @@ ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
   }
 
   ElasticConstants result;
-  const MeanAndError c11_estimate = mean_and_error_of_blocks(c11_blocks);
-  const MeanAndError c12_estimate = mean_and_error_of_blocks(c12_blocks);
-  const MeanAndError c44_estimate = block_mean(c44);
-  const MeanAndError pressure = block_mean(p);
+  const BlockAverage c11_estimate = mean_and_error_of_blocks(c11_blocks);
+  const BlockAverage c12_estimate = mean_and_error_of_blocks(c12_blocks);
+  const BlockAverage c44_estimate = block_average(c44);
+  const BlockAverage pressure = block_average(p);
   result.c11 = c11_estimate.mean;
   result.c12 = c12_estimate.mean;
   result.c44 = c44_estimate.mean;

@@ -21,12 +21,12 @@
 // its stress averaged over the sampling steps. The +ε and −ε runs use the
 // same seed, so the same initial velocities and the same pair noise: the
 // friction pulls the two trajectories together (noise-induced
-// synchronisation), and the difference σ(+ε) − σ(−ε) carries almost none of
-// the thermal noise of either (for Morse copper at 298 K, per-step C11
-// scatters by 0.6 GPa instead of ~20). Its error is the block standard error
-// of the per-step difference. These are isothermal constants; C11 and C12
-// at constant entropy are larger by T (∂P/∂T)_V² / c_V (C44 is the same),
-// ~0.3 GPa for the copper mesoparticle at 298 K.
+// synchronisation), and the difference σ(+ε) − σ(−ε) carries little of the
+// thermal noise of either: for Morse copper at 298 K the error of C11 is
+// 0.05 GPa where independent runs of the same length would give ~0.6. The
+// error is the block standard error of the per-step difference. These are isothermal constants; C11
+// and C12 at constant entropy are larger by T (∂P/∂T)_V² / c_V (C44 is the same), ~0.3 GPa for the
+// copper mesoparticle at 298 K.
 #pragma once
 
 #include <array>
@@ -42,8 +42,8 @@ namespace pbms::dpd {
 struct CrystalSpec {
   double lattice_constant = 0.0;  // Å, of the conventional cubic cell
   // At least this many lattice constants along every box edge. 0: the
-  // fewest the neighbour list accepts (box edge ≥ 2 (reach + skin)) in every
-  // state a call builds; the count then depends on the state (compressed
+  // fewest the neighbour list accepts (box edge ≥ 2 × (larger cutoff +
+  // skin)) in every state a call builds; the count then depends on the state (compressed
   // states can need more cells), so a fit that wants results smooth in its
   // parameters should fix it.
   int cells = 0;
@@ -67,7 +67,8 @@ struct ThermalSettings {
   // the DPD cutoff. With the default cutoff the friction rate γ Σ w_D / m is
   // ~20/ps for the copper mesoparticle (0.2 per step): equilibration within
   // 1 ps, tight synchronisation of the ±ε runs, the kinetic temperature
-  // within 0.3 % of the bath; at 4 γ velocity Verlet starts to misbehave.
+  // within 0.3 % of the bath. At 4 γ particles start to wander (neighbour
+  // list rebuilds every ~20 steps instead of once a run).
   double gamma = 1.0e4;
   // Å; 0: the crystal's lattice constant, so that the friction and its
   // costly pair noise (three quarters of a step at a 10 Å cutoff) act on
@@ -88,7 +89,8 @@ struct ElasticConstants {
   // and C12 (the same runs) is accounted for.
   double youngs_100_error = 0.0, bulk_modulus_error = 0.0;
   // Of the unstrained state. Static: exact. At temperature: the mean of the
-  // two tetragonal states, high by O(ε²) (~0.001 GPa at the default strain).
+  // two tetragonal states, high by O(ε²) (~0.001 GPa at the default strain);
+  // the cubic crystal of isotherm.hpp reads ~0.002 GPa lower (finite size).
   double pressure = 0.0, pressure_error = 0.0;
 
   // E⟨100⟩ = (C11 − C12)(C11 + 2 C12)/(C11 + C12).
@@ -111,33 +113,32 @@ inline constexpr int kBlocks = 5;
 
 // The constants of the crystal at crystal.lattice_constant (at temperature
 // usually zero_pressure_lattice_constant's, isotherm.hpp), from ±strain;
-// strain 0: kStaticStrain or kThermalStrain. Costs four static evaluations
-// (~0.1 ms for copper) or four DPD runs of equilibration + sampling steps
-// (~1 s at the defaults). Not reentrant for one pair style (styles keep
-// per-call state); calls with their own styles may run concurrently.
-// Throws pbms::Error for a non-positive lattice constant, a negative cell
-// count, a strain outside [0, 0.05], invalid thermal settings, or
-// crystal.cells > 0 too few for the neighbour list.
+// strain 0: kStaticStrain or kThermalStrain. Costs five static evaluations
+// (~1 ms for copper) or four DPD runs of equilibration + sampling steps
+// (~1.5 s at the defaults, 0.5 s with 100 + 500 steps). Not reentrant for one pair style (styles
+// keep per-call state); calls with their own styles may run concurrently. Throws pbms::Error for a
+// non-positive lattice constant, a negative cell count, a strain outside [0, 0.05], invalid thermal
+// settings, or crystal.cells > 0 too few for the neighbour list.
 ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
                                    const ThermalSettings& thermal, double strain = 0.0);
 
 // ---- building blocks, shared with isotherm.cpp -------------------------------
 
 // Cauchy stress, GPa, positive in tension: xx, yy, zz, xy, xz, yz.
-using Stress = std::array<double, 6>;
+using CauchyStress = std::array<double, 6>;
 
 // −trace/3, GPa.
-inline double pressure_of(const Stress& s) {
+inline double pressure_of(const CauchyStress& s) {
   return -(s[0] + s[1] + s[2]) / 3.0;
 }
 
 // The DPD cutoff (Å) of a crystal of this lattice constant (Å).
-double friction_cutoff(const ThermalSettings& thermal, double lattice_constant);
+double sampling_dpd_cutoff(const ThermalSettings& thermal, double lattice_constant);
 
 // How far (Å) the neighbour list must reach: the larger cutoff plus skin.
 // A periodic box edge must be at least twice this.
-double neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
-                       double lattice_constant);
+double sampling_neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
+                                double lattice_constant);
 
 // The stress of a crystal held in its box (lattice_constant: of its
 // unstrained cells, for the DPD cutoff): one row, the static stress, at
@@ -145,18 +146,18 @@ double neighbour_reach(const PairStyle& pair, const ThermalSettings& thermal,
 // equilibration (Maxwell–Boltzmann velocities at 2T, which equipartition
 // brings to T within a phonon period, then DPD at T). Throws pbms::Error
 // for a box too small for the neighbour list.
-std::vector<Stress> sample_stress(PairStyle& pair, FccCrystal crystal,
-                                  const ThermalSettings& thermal, double lattice_constant);
+std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
+                                        const ThermalSettings& thermal, double lattice_constant);
 
 // Throws pbms::Error, naming the offending field, for invalid settings.
-void check_settings(const CrystalSpec& crystal, const ThermalSettings& thermal);
+void check_property_settings(const CrystalSpec& crystal, const ThermalSettings& thermal);
 
 // Mean and standard error of a series from kBlocks block means (the error
 // is 0 for fewer than kBlocks samples, the static case).
-struct MeanAndError {
+struct BlockAverage {
   double mean = 0.0;
   double error = 0.0;
 };
-MeanAndError block_mean(const std::vector<double>& series);
+BlockAverage block_average(const std::vector<double>& series);
 
 }  // namespace pbms::dpd

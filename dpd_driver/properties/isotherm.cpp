@@ -18,8 +18,8 @@ constexpr double kPressureTolerance = 1e-6;  // GPa
 // from the static root the secant needs two or three.
 constexpr int kStaticIterations = 60;
 constexpr int kThermalIterations = 12;
-// Secant steps are capped so that one wild slope cannot leave the
-// crystal's range (a 40 % compression is ~100 GPa for copper).
+// Secant steps are capped at 10 % of V0 (~15 GPa near zero pressure for
+// copper), so that one wild slope cannot throw the crystal out of its range.
 constexpr double kMaxStep = 0.1;
 constexpr double kMinRatio = 0.3;
 constexpr double kMaxRatio = 3.0;
@@ -88,10 +88,10 @@ Solution solve(const Evaluate& evaluate, double target, IsothermPoint point, dou
 
 IsothermPoint isotherm_point(PairStyle& pair, const CrystalSpec& reference,
                              const ThermalSettings& thermal, double volume_ratio) {
-  check_settings(reference, thermal);
+  check_property_settings(reference, thermal);
   if (!(volume_ratio > 0.0)) throw Error("DPD isotherm: volume ratio must be > 0");
   const double a = reference.lattice_constant * std::cbrt(volume_ratio);
-  const double reach = neighbour_reach(pair, thermal, a);
+  const double reach = sampling_neighbour_reach(pair, thermal, a);
   const int needed = static_cast<int>(std::ceil(2.0 * reach * (1.0 + 1e-9) / a));
   if (reference.cells > 0 && reference.cells < needed) {
     throw Error("DPD isotherm: " + std::to_string(reference.cells) +
@@ -100,17 +100,17 @@ IsothermPoint isotherm_point(PairStyle& pair, const CrystalSpec& reference,
                 std::to_string(needed) + " (or 0, automatic)");
   }
   const int cells = std::max(needed, reference.cells);
-  const std::vector<Stress> samples =
+  const std::vector<CauchyStress> samples =
       sample_stress(pair, fcc_crystal(cells, cells, cells, a, reference.mass), thermal, a);
   std::vector<double> pressure(samples.size());
   for (std::size_t k = 0; k < samples.size(); ++k) pressure[k] = pressure_of(samples[k]);
-  const MeanAndError p = block_mean(pressure);
+  const BlockAverage p = block_average(pressure);
   return {volume_ratio, a, p.mean, p.error};
 }
 
 IsothermPoint volume_ratio_at_pressure(PairStyle& pair, const CrystalSpec& reference,
                                        const ThermalSettings& thermal, double pressure_gpa) {
-  check_settings(reference, thermal);
+  check_property_settings(reference, thermal);
   const ThermalSettings cold = static_of(thermal);
   const auto cold_point = [&](double r) { return isotherm_point(pair, reference, cold, r); };
   // The static slope at the reference, from a small central difference.

@@ -41,7 +41,7 @@ std::vector<Param> crystal_params() {
       Param::integer("equilibration_steps", "Steps before sampling, per state")
           .def(200)
           .at_least(0),
-      Param::integer("sampling_steps", "Steps sampled, per state").def(1000).at_least(10),
+      Param::integer("sampling_steps", "Steps sampled, per state").def(2000).at_least(10),
       Param::boolean("zero_pressure",
                      "Use the lattice constant of zero pressure at `temperature` instead of the "
                      "material's")

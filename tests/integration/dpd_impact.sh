@@ -8,9 +8,9 @@ s=runs/dpd_impact/summary.yaml
 "$PY" - "$s" <<'PYEOF'
 import sys, yaml
 s = yaml.safe_load(open(sys.argv[1]))
-v = s["impact"]["wave_speed"]["value"]
-bar = s["elastic_298K"]["bar_speed"]["value"]
-lon = s["elastic_298K"]["longitudinal_speed"]["value"]
+v = s["stages"]["impact"]["results"]["wave_speed"]["value"]
+bar = s["stages"]["elastic_298K"]["results"]["bar_speed"]["value"]
+lon = s["stages"]["elastic_298K"]["results"]["longitudinal_speed"]["value"]
 ok = 0.95 * bar <= v <= 1.05 * lon
 print(f"{'ok  ' if ok else 'FAIL'} wave speed {v:.0f} m/s in [0.95 x {bar:.0f}, 1.05 x {lon:.0f}] m/s (seed: 3846)")
 sys.exit(0 if ok else 1)

@@ -7,8 +7,8 @@ s=runs/dpd_tension/summary.yaml
 "$PY" - "$s" <<'PYEOF'
 import sys, yaml
 s = yaml.safe_load(open(sys.argv[1]))
-e = s["tension"]["youngs_modulus"]["value"]
-e100 = s["elastic_298K"]["youngs_modulus_100"]["value"]
+e = s["stages"]["tension"]["results"]["youngs_modulus"]["value"]
+e100 = s["stages"]["elastic_298K"]["results"]["youngs_modulus_100"]["value"]
 ok = abs(e - e100) <= 0.10 * e100
 print(f"{'ok  ' if ok else 'FAIL'} Young's modulus {e:.1f} GPa vs E<100> {e100:.1f} GPa at 298 K ({100 * (e / e100 - 1):+.1f} %, tolerance 10 %; seed: 87.2)")
 sys.exit(0 if ok else 1)

@@ -5,9 +5,9 @@
 //
 // The static checks compare with independent finite differences of the
 // energy, computed here on crystals built here. The DpdProperties tests take
-// ~5 s together; DISABLED_DpdPropertiesLong (~1 min) checks the claims
-// behind the thermal defaults: reported errors against the scatter over
-// seeds, and 3 cells against 5.
+// ~4 s together; DISABLED_DpdPropertiesLong (~25 s) checks the claims behind
+// the thermal defaults: reported errors against the scatter over seeds, and
+// 3 cells against 5.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -290,7 +290,7 @@ TEST(DpdProperties, InvalidSettingsAreRefused) {
   EXPECT_THROW(isotherm_point(morse, crystal, hot, 1.0), pbms::Error);
 }
 
-// ~1 min: the claims behind the thermal defaults. Run with
+// ~25 s: the claims behind the thermal defaults. Run with
 // --gtest_also_run_disabled_tests --gtest_filter='DISABLED_DpdPropertiesLong.*'.
 TEST(DISABLED_DpdPropertiesLong, ErrorsMatchSeedScatterAndThreeCellsSuffice) {
   Morse morse = copper_morse();
@@ -328,7 +328,7 @@ TEST(DISABLED_DpdPropertiesLong, ErrorsMatchSeedScatterAndThreeCellsSuffice) {
 
   hot.seed = 1;
   const ElasticConstants large = elastic_constants(morse, {kLattice, 5, kMass}, hot);
-  print("5 cells (1,000 particles in the rotated box)", large, 0.0);
+  print("5 cells (640 particles in the rotated box)", large, 0.0);
   EXPECT_NEAR(large.c11, mean(c11), 0.1);
   EXPECT_NEAR(large.c44, mean(c44), 0.1);
 }
