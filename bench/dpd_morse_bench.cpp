@@ -6,18 +6,19 @@
 // a = 7.23 Å, 508.37 g/mol), the Morse fit of docs/dpd-morse-fit.md
 // (shift yes, r_c = 10 Å), skin 1 Å, dt = 0.01 ps, 1,000 steps, velocities
 // Maxwell–Boltzmann at 298 K. Runs
-//   - NVE (DpdScheme::kNve): BENCH dpd_particle_steps_per_s, which the
-//     script sets against lmp pair_style morse and morse/opt on the same
-//     state (target: PBMS ≥ 1.2 × the faster LAMMPS run);
+//   - NVE (DpdScheme::kNve): the script's BENCH dpd_particle_steps_per_s,
+//     set against lmp pair_style morse and morse/opt on the same state
+//     (target: PBMS ≥ 1.2 × the faster LAMMPS run);
 //   - full DPD (kVelocityVerlet, γ = 0.2 g/mol/ps, 298 K, DPD cutoff
 //     10 Å): BENCH dpd_thermostat_cost = its time / the NVE time (target
 //     ≤ 1.5).
-// Each time is the best of kRepeats runs from the same state.
 //
-// Usage: dpd_morse_bench WORK_DIR. Writes WORK_DIR/data.lmp (positions and
+// Usage: dpd_morse_bench WORK_DIR writes WORK_DIR/data.lmp (positions and
 // the very velocities PBMS starts from, so that lmp runs the same
-// trajectory) and WORK_DIR/in.morse (pair style chosen by -var pair), and
-// prints "# pbms ..." lines with the energies the script compares.
+// trajectory) and WORK_DIR/in.morse (pair style chosen by -var pair);
+// dpd_morse_bench WORK_DIR nve|dpd times one run and prints its processor
+// time and energies. One run per call lets the script interleave PBMS and
+// lmp runs, so that a slow spell of a shared machine hits both alike.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -48,9 +49,6 @@ constexpr int kSteps = 1000;
 constexpr double kTemperature = 298.0;  // K
 constexpr double kGamma = 0.2;          // g/mol/ps
 constexpr std::uint64_t kSeed = 4928;
-// Every timing is the best of this many runs: single runs on a shared
-// machine scatter by ±20 %.
-constexpr int kRepeats = 2;
 
 // Processor time of this (single-threaded) process, s. The rates use it
 // rather than wall time so that other work on a shared machine, which takes
@@ -72,7 +70,7 @@ struct RunResult {
   long list_builds = 0;
 };
 
-RunResult run_once(const FccCrystal& start, DpdScheme scheme) {
+RunResult run(const FccCrystal& start, DpdScheme scheme) {
   FccCrystal crystal = start;
   Morse morse(kD0, kAlpha, kR0, kCutoff, true);
   DpdIntegratorSettings settings;
@@ -93,15 +91,6 @@ RunResult run_once(const FccCrystal& start, DpdScheme scheme) {
   result.final_kinetic = kinetic_energy(crystal.particles);
   result.list_builds = integrator.neighbour_list().build_count();
   return result;
-}
-
-RunResult run(const FccCrystal& start, DpdScheme scheme) {
-  RunResult best = run_once(start, scheme);
-  for (int k = 1; k < kRepeats; ++k) {
-    const RunResult again = run_once(start, scheme);
-    if (again.seconds < best.seconds) best = again;
-  }
-  return best;
 }
 
 bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
@@ -153,34 +142,27 @@ bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: dpd_morse_bench WORK_DIR\n");
+  const std::string scheme = argc == 3 ? argv[2] : "";
+  if (argc < 2 || argc > 3 || (argc == 3 && scheme != "nve" && scheme != "dpd")) {
+    std::fprintf(stderr, "usage: dpd_morse_bench WORK_DIR [nve|dpd]\n");
     return 2;
   }
   FccCrystal crystal = fcc_crystal(kCells, kCells, kCells, kLattice, kMass);
   assign_maxwell_boltzmann_velocities(crystal.particles, kTemperature, kSeed);
-  if (!write_lammps_files(argv[1], crystal)) {
+  if (scheme.empty()) {
+    if (write_lammps_files(argv[1], crystal)) return 0;
     std::fprintf(stderr, "dpd_morse_bench: cannot write into %s\n", argv[1]);
     return 1;
   }
 
-  const RunResult nve = run(crystal, DpdScheme::kNve);
-  const RunResult dpd = run(crystal, DpdScheme::kVelocityVerlet);
-  const double particle_steps = static_cast<double>(crystal.particles.size()) * kSteps;
-
-  std::printf("# pbms %zu particles, %d steps, 1 core\n", crystal.particles.size(), kSteps);
-  std::printf("# pbms nve: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
-              nve.seconds, nve.wall_seconds, nve.list_builds,
-              nve.initial_potential + nve.initial_kinetic, nve.final_potential + nve.final_kinetic);
-  std::printf("# pbms dpd: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
-              dpd.seconds, dpd.wall_seconds, dpd.list_builds,
-              dpd.initial_potential + dpd.initial_kinetic, dpd.final_potential + dpd.final_kinetic);
-  // Machine-read by dpd_morse.sh: initial and final (NVE) energies in eV.
-  std::printf("# pbms initial_pe %.15g\n", nve.initial_potential);
-  std::printf("# pbms initial_ke %.15g\n", nve.initial_kinetic);
-  std::printf("# pbms final_pe %.15g\n", nve.final_potential);
-  std::printf("# pbms final_ke %.15g\n", nve.final_kinetic);
-  std::printf("BENCH dpd_particle_steps_per_s %.4g 1/s\n", particle_steps / nve.seconds);
-  std::printf("BENCH dpd_thermostat_cost %.4f x\n", dpd.seconds / nve.seconds);
+  const RunResult r =
+      run(crystal, scheme == "nve" ? DpdScheme::kNve : DpdScheme::kVelocityVerlet);
+  std::printf("# pbms %s: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
+              scheme.c_str(), r.seconds, r.wall_seconds, r.list_builds,
+              r.initial_potential + r.initial_kinetic, r.final_potential + r.final_kinetic);
+  // Machine-read by dpd_morse.sh.
+  std::printf("PBMS %s cpu_s %.6f particle_steps %.0f initial_pe %.15g final_pe %.15g\n",
+              scheme.c_str(), r.seconds, static_cast<double>(crystal.particles.size()) * kSteps,
+              r.initial_potential, r.final_potential);
   return 0;
 }

@@ -6,6 +6,7 @@ cfg="$(dirname "$0")/configs/dpd_ranks.yaml"
 for n in 1 2 4; do
   "$PBMS" run "$cfg" --ranks dpd=$n > out_$n.txt 2>&1 || { cat out_$n.txt; fail "run on $n ranks"; }
   cp runs/dpd_ranks/thermostat/particles.h5md particles_$n.h5md
+  cp runs/dpd_ranks/initial_forces/particles.h5md forces_$n.h5md
 done
 "$PY" - <<'PYEOF'
 import sys, h5py, numpy as np
@@ -22,6 +23,16 @@ for n in (2, 4):
     ok = dx < 1e-9
     bad += not ok
     print(f"{'ok  ' if ok else 'FAIL'} {n} ranks vs 1: max |dx| {dx:.1e} Å (tolerance 1e-9), max |dv| {dv:.1e} Å/ps")
+# steps: 0 wrote the forces of the final state: they sum to zero (Newton's
+# third law, no rigid group in that stage) and match across rank counts.
+f1 = h5py.File("forces_1.h5md")["particles/all/force/value"][0]
+for n in (1, 2, 4):
+    f = h5py.File(f"forces_{n}.h5md")["particles/all/force/value"][0]
+    net = np.abs(f.sum(axis=0)).max() / np.abs(f).max()
+    diff = np.abs(f - f1).max() / np.abs(f1).max()
+    ok = net < 1e-10 and diff < 1e-9
+    bad += not ok
+    print(f"{'ok  ' if ok else 'FAIL'} steps: 0 forces on {n} ranks: |sum f| / max|f| {net:.1e}, vs 1 rank {diff:.1e}")
 sys.exit(1 if bad else 0)
 PYEOF
 echo "1 passed, 0 failed"
