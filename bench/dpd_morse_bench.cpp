@@ -155,8 +155,7 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  const RunResult r =
-      run(crystal, scheme == "nve" ? DpdScheme::kNve : DpdScheme::kVelocityVerlet);
+  const RunResult r = run(crystal, scheme == "nve" ? DpdScheme::kNve : DpdScheme::kVelocityVerlet);
   std::printf("# pbms %s: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
               scheme.c_str(), r.seconds, r.wall_seconds, r.list_builds,
               r.initial_potential + r.initial_kinetic, r.final_potential + r.final_kinetic);
