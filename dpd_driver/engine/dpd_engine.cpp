@@ -6,6 +6,7 @@
 #include "engine/particle_migration.hpp"
 #include "integrators/shardlow_sweep.hpp"
 #include "kernels/dpd_pair_friction.hpp"
+#include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
 #include "pbms/units.hpp"
@@ -14,32 +15,8 @@ namespace pbms::dpd {
 
 namespace {
 
-double interaction_cutoff(const PairStyle& pair, const DpdIntegratorSettings& s) {
-  if (s.scheme == DpdScheme::kNve) return pair.cutoff();
-  return std::max(pair.cutoff(), s.friction.cutoff);
-}
-
 bool is_shardlow(DpdScheme s) {
   return s == DpdScheme::kShardlow || s == DpdScheme::kShardlowDpde;
-}
-
-void wrap_periodic(const OrthogonalBox& box, DpdParticles& p, std::size_t n) {
-  for (int a = 0; a < 3; ++a) {
-    if (!box.periodic[a]) continue;
-    const double l = box.length(a);
-    for (std::size_t i = 0; i < n; ++i) {
-      double& x = p.x[i][a];
-      const double crossings = std::floor((x - box.lo[a]) / l);
-      if (crossings == 0.0) continue;
-      x -= crossings * l;
-      int c = static_cast<int>(crossings);
-      if (x >= box.hi[a]) {  // a value just below lo rounds up to hi
-        x -= l;
-        ++c;
-      }
-      p.image[i][a] += c;
-    }
-  }
 }
 
 void allreduce_sum(MPI_Comm comm, double* data, int n) {
@@ -52,26 +29,17 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
                      const DpdIntegratorSettings& settings, DpdParticles all)
     : domain_(comm, box, interaction_cutoff(*pair, settings) + settings.skin),
       pair_(std::move(pair)),
-      settings_(settings),
+      settings_(checked_settings(settings)),
       ghosts_(domain_, interaction_cutoff(*pair_, settings) + settings.skin),
       list_(interaction_cutoff(*pair_, settings), settings.skin),
       step_(settings.first_step) {
-  // The same checks and messages as the serial integrator.
-  if (!(settings.dt > 0.0)) throw Error("DPD engine: dt must be > 0 ps");
-  if (settings.scheme != DpdScheme::kNve) {
-    if (!(settings.friction.gamma >= 0.0)) throw Error("DPD engine: gamma must be >= 0 g/mol/ps");
-    if (!(settings.friction.cutoff > 0.0)) throw Error("DPD engine: DPD cutoff must be > 0 Å");
-  }
-  if (settings.scheme == DpdScheme::kShardlowDpde && !(settings.heat_capacity > 0.0)) {
-    throw Error("DPD engine: DPDE needs a heat capacity > 0 eV/K");
-  }
   if (is_shardlow(settings.scheme) && domain_.size() > 1) {
     throw Error(
         "DPD engine: the Shardlow schemes sweep pairs in a sequence that a decomposition would "
         "change; run them on one rank, or use the velocity_verlet scheme on several");
   }
   total_ = static_cast<std::int64_t>(all.size());
-  wrap_periodic(box, all, all.size());
+  wrap_periodic_axes(all, box, all.size());
   particles_.mass_per_type = all.mass_per_type;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (!domain_.owns(all.x[i])) continue;
@@ -116,7 +84,7 @@ void DpdEngine::set_rigid_bodies(const std::vector<std::uint32_t>& masks) {
 
 void DpdEngine::rebuild() {
   particles_.truncate(owned_);
-  wrap_periodic(domain_.box(), particles_, owned_);
+  wrap_periodic_axes(particles_, domain_.box(), owned_);
   if (domain_.size() > 1) migrate_particles(domain_, particles_);
   owned_ = particles_.size();
   ghosts_.build(particles_, owned_);

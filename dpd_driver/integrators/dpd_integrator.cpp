@@ -8,14 +8,12 @@
 
 namespace pbms::dpd {
 
-namespace {
-
-double list_cutoff(const PairStyle& pair, const DpdIntegratorSettings& settings) {
+double interaction_cutoff(const PairStyle& pair, const DpdIntegratorSettings& settings) {
   if (settings.scheme == DpdScheme::kNve) return pair.cutoff();
   return std::max(pair.cutoff(), settings.friction.cutoff);
 }
 
-const DpdIntegratorSettings& checked(const DpdIntegratorSettings& settings) {
+const DpdIntegratorSettings& checked_settings(const DpdIntegratorSettings& settings) {
   if (!(settings.dt > 0.0)) throw Error("DPD integrator: dt must be > 0 ps");
   if (settings.scheme == DpdScheme::kNve) return settings;
   if (!(settings.friction.gamma >= 0.0)) throw Error("DPD integrator: gamma must be >= 0 g/mol/ps");
@@ -29,15 +27,13 @@ const DpdIntegratorSettings& checked(const DpdIntegratorSettings& settings) {
   return settings;
 }
 
-}  // namespace
-
 DpdIntegrator::DpdIntegrator(DpdParticles& particles, const OrthogonalBox& box, PairStyle& pair,
                              const DpdIntegratorSettings& settings)
     : particles_(particles),
       box_(box),
       pair_(pair),
-      settings_(checked(settings)),
-      list_(list_cutoff(pair, settings), settings.skin),
+      settings_(checked_settings(settings)),
+      list_(interaction_cutoff(pair, settings), settings.skin),
       step_(settings.first_step) {
   list_.build(particles_, box_);
   compute_forces(Tally::kForcesOnly);

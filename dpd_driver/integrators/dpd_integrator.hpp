@@ -42,6 +42,15 @@ struct DpdIntegratorSettings {
   std::int64_t first_step = 0;  // keys the noise, so that a continued run draws fresh numbers
 };
 
+// The neighbour-list cutoff a scheme needs: the conservative style's, and
+// the DPD cutoff too unless the scheme is kNve.
+[[nodiscard]] double interaction_cutoff(const PairStyle& pair, const DpdIntegratorSettings& s);
+
+// Throws pbms::Error for a non-positive dt or, outside kNve, a negative γ,
+// a non-positive DPD cutoff, a negative bath temperature or (kShardlowDpde)
+// a non-positive C_v. Returns its argument.
+const DpdIntegratorSettings& checked_settings(const DpdIntegratorSettings& s);
+
 class DpdIntegrator {
  public:
   // Keeps references to particles, box and pair style, which must outlive the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
 
 namespace pbms::dpd {
@@ -62,17 +63,7 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
                     std::to_string(2.0 * reach) + " Å; replicate the box");
       }
       // Wrapping happens here and only here; see the header.
-      for (std::size_t i = 0; i < n; ++i) {
-        double& xi = particles.x[i][a];
-        double crossings = std::floor((xi - lo) / extent);
-        if (crossings == 0.0) continue;
-        xi -= crossings * extent;
-        if (xi >= lo + extent) {  // a value just below lo rounds up to hi
-          xi -= extent;
-          crossings += 1.0;
-        }
-        particles.image[i][a] += static_cast<int>(crossings);
-      }
+      wrap_axis(particles, box, a, n);
     } else {
       // A free axis bins the particles where they are, inside the box or not.
       double hi = lo;
