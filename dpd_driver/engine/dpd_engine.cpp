@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "engine/particle_migration.hpp"
-#include "integrators/shardlow_sweep.hpp"
 #include "kernels/dpd_pair_friction.hpp"
 #include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
@@ -147,12 +146,7 @@ PairResult DpdEngine::compute_forces(Tally tally) {
 
 void DpdEngine::step() {
   const double dt = settings_.dt;
-  if (settings_.scheme == DpdScheme::kShardlow) {
-    shardlow_sweep(particles_, list_, settings_.friction, step_, dt);
-  } else if (settings_.scheme == DpdScheme::kShardlowDpde) {
-    shardlow_sweep_energy_conserving(particles_, list_, settings_.friction, settings_.heat_capacity,
-                                     step_, dt);
-  }
+  splitting_sweep(particles_, list_, settings_, step_);
   half_kick();
   for (std::size_t i = 0; i < owned_; ++i) {
     for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];

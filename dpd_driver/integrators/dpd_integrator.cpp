@@ -60,14 +60,18 @@ PairResult DpdIntegrator::compute_forces(Tally tally) {
   return result;
 }
 
+void splitting_sweep(DpdParticles& particles, const HalfNeighbourList& list,
+                     const DpdIntegratorSettings& s, std::int64_t step) {
+  if (s.scheme == DpdScheme::kShardlow) {
+    shardlow_sweep(particles, list, s.friction, step, s.dt);
+  } else if (s.scheme == DpdScheme::kShardlowDpde) {
+    shardlow_sweep_energy_conserving(particles, list, s.friction, s.heat_capacity, step, s.dt);
+  }
+}
+
 PairResult DpdIntegrator::step(Tally tally) {
   const double dt = settings_.dt;
-  if (settings_.scheme == DpdScheme::kShardlow) {
-    shardlow_sweep(particles_, list_, settings_.friction, step_, dt);
-  } else if (settings_.scheme == DpdScheme::kShardlowDpde) {
-    shardlow_sweep_energy_conserving(particles_, list_, settings_.friction, settings_.heat_capacity,
-                                     step_, dt);
-  }
+  splitting_sweep(particles_, list_, settings_, step_);
   half_kick();
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];

@@ -51,6 +51,11 @@ struct DpdIntegratorSettings {
 // a non-positive C_v. Returns its argument.
 const DpdIntegratorSettings& checked_settings(const DpdIntegratorSettings& s);
 
+// The pairwise stochastic sweep that opens a step of the Shardlow schemes
+// (shardlow_sweep.hpp); nothing for kNve and kVelocityVerlet.
+void splitting_sweep(DpdParticles& particles, const HalfNeighbourList& list,
+                     const DpdIntegratorSettings& s, std::int64_t step);
+
 class DpdIntegrator {
  public:
   // Keeps references to particles, box and pair style, which must outlive the
