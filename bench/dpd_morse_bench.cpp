@@ -11,7 +11,8 @@
 //     (target: PBMS ≥ 1.2 × the faster LAMMPS run);
 //   - full DPD (kVelocityVerlet, γ = 0.2 g/mol/ps, 298 K, DPD cutoff
 //     10 Å): BENCH dpd_thermostat_cost = its time / the NVE time (target
-//     ≤ 1.5).
+//     ≤ 1.5), with θ Gaussian as stages draw it by default ("dpd" or
+//     "dpd_gaussian") or uniform ("dpd_uniform").
 //
 // Usage: dpd_morse_bench WORK_DIR writes WORK_DIR/data.lmp (positions and
 // the very velocities PBMS starts from, so that lmp runs the same
@@ -70,14 +71,14 @@ struct RunResult {
   long list_builds = 0;
 };
 
-RunResult run(const FccCrystal& start, DpdScheme scheme) {
+RunResult run(const FccCrystal& start, DpdScheme scheme, PairNoiseDistribution noise) {
   FccCrystal crystal = start;
   Morse morse(kD0, kAlpha, kR0, kCutoff, true);
   DpdIntegratorSettings settings;
   settings.scheme = scheme;
   settings.dt = kDt;
   settings.skin = kSkin;
-  settings.friction = {kGamma, kCutoff, kTemperature, kSeed};
+  settings.friction = {kGamma, kCutoff, kTemperature, kSeed, noise};
   DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
   RunResult result;
   result.initial_potential = integrator.potential().energy;
@@ -143,8 +144,10 @@ bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
 
 int main(int argc, char** argv) {
   const std::string scheme = argc == 3 ? argv[2] : "";
-  if (argc < 2 || argc > 3 || (argc == 3 && scheme != "nve" && scheme != "dpd")) {
-    std::fprintf(stderr, "usage: dpd_morse_bench WORK_DIR [nve|dpd]\n");
+  if (argc < 2 || argc > 3 ||
+      (argc == 3 && scheme != "nve" && scheme != "dpd" && scheme != "dpd_gaussian" &&
+       scheme != "dpd_uniform")) {
+    std::fprintf(stderr, "usage: dpd_morse_bench WORK_DIR [nve|dpd|dpd_gaussian|dpd_uniform]\n");
     return 2;
   }
   FccCrystal crystal = fcc_crystal(kCells, kCells, kCells, kLattice, kMass);
@@ -155,7 +158,12 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  const RunResult r = run(crystal, scheme == "nve" ? DpdScheme::kNve : DpdScheme::kVelocityVerlet);
+  // "dpd" draws θ as a stage does by default (DpdPairFriction's noise).
+  const PairNoiseDistribution noise = scheme == "dpd_gaussian"  ? PairNoiseDistribution::kGaussian
+                                      : scheme == "dpd_uniform" ? PairNoiseDistribution::kUniform
+                                                                : DpdPairFriction{}.noise;
+  const RunResult r =
+      run(crystal, scheme == "nve" ? DpdScheme::kNve : DpdScheme::kVelocityVerlet, noise);
   std::printf("# pbms %s: cpu %.3f s, wall %.3f s, %ld list builds, E_tot %.15g -> %.15g eV\n",
               scheme.c_str(), r.seconds, r.wall_seconds, r.list_builds,
               r.initial_potential + r.initial_kinetic, r.final_potential + r.final_kinetic);

@@ -2,9 +2,14 @@
 
 #include <cmath>
 
+// GCC 12 warns inside its own AVX-512 intrinsics when Eigen vectorises with
+// them (GCC bug 105593, fixed in 13); the warning is not about our code.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/Core>
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <unsupported/Eigen/NumericalDiff>
+#pragma GCC diagnostic pop
 
 #include "pbms/error.hpp"
 

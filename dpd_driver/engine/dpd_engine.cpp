@@ -5,6 +5,7 @@
 
 #include "engine/particle_migration.hpp"
 #include "kernels/dpd_pair_friction.hpp"
+#include "kernels/pair_noise.hpp"
 #include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
@@ -37,6 +38,7 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
         "DPD engine: the Shardlow schemes sweep pairs in a sequence that a decomposition would "
         "change; run them on one rank, or use the velocity_verlet scheme on several");
   }
+  if (settings_.scheme != DpdScheme::kNve) check_pair_noise_ids(all);
   total_ = static_cast<std::int64_t>(all.size());
   wrap_periodic_axes(all, box, all.size());
   particles_.mass_per_type = all.mass_per_type;
@@ -135,13 +137,12 @@ void DpdEngine::half_kick() {
 
 PairResult DpdEngine::compute_forces(Tally tally) {
   particles_.zero_forces();
-  PairResult result = pair_->compute(particles_, list_, tally);
   if (settings_.scheme == DpdScheme::kVelocityVerlet) {
     // Half-step velocities (dpd_integrator.hpp), ghosts' included.
-    add_dissipative_random_forces(particles_, particles_.v, list_, settings_.friction, step_,
-                                  settings_.dt);
+    return add_conservative_and_friction_forces(*pair_, particles_, particles_.v, list_,
+                                                settings_.friction, step_, settings_.dt, tally);
   }
-  return result;
+  return pair_->compute(particles_, list_, tally);
 }
 
 void DpdEngine::step() {

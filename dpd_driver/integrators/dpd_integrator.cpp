@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "integrators/shardlow_sweep.hpp"
+#include "kernels/pair_noise.hpp"
 #include "pbms/error.hpp"
 #include "pbms/units.hpp"
 
@@ -35,6 +36,7 @@ DpdIntegrator::DpdIntegrator(DpdParticles& particles, const OrthogonalBox& box, 
       settings_(checked_settings(settings)),
       list_(interaction_cutoff(pair, settings), settings.skin),
       step_(settings.first_step) {
+  if (settings_.scheme != DpdScheme::kNve) check_pair_noise_ids(particles_);
   list_.build(particles_, box_);
   compute_forces(Tally::kForcesOnly);
 }
@@ -51,13 +53,12 @@ void DpdIntegrator::half_kick() {
 PairResult DpdIntegrator::compute_forces(Tally tally) {
   if (list_.needs_rebuild(particles_)) list_.build(particles_, box_);
   particles_.zero_forces();
-  PairResult result = pair_.compute(particles_, list_, tally);
   if (settings_.scheme == DpdScheme::kVelocityVerlet) {
     // The velocities here are the half-step ones (see the header).
-    add_dissipative_random_forces(particles_, particles_.v, list_, settings_.friction, step_,
-                                  settings_.dt);
+    return add_conservative_and_friction_forces(pair_, particles_, particles_.v, list_,
+                                                settings_.friction, step_, settings_.dt, tally);
   }
-  return result;
+  return pair_.compute(particles_, list_, tally);
 }
 
 void splitting_sweep(DpdParticles& particles, const HalfNeighbourList& list,

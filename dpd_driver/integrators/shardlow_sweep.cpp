@@ -21,6 +21,7 @@ void sweep(DpdParticles& particles, const HalfNeighbourList& list, const DpdPair
   const double inverse_cutoff = 1.0 / friction.cutoff;
   const double half_dt = 0.5 * dt;
   const double sqrt_dt = std::sqrt(dt);
+  const PairNoise noise(friction.seed, friction.noise);
   const std::size_t n = list.particle_count();
   const HalfNeighbourList::Entry* entries = list.entries();
   for (std::size_t i = 0; i < n; ++i) {
@@ -44,8 +45,7 @@ void sweep(DpdParticles& particles, const HalfNeighbourList& list, const DpdPair
 
       // Momentum transfers along e_ij, g/mol·Å/ps.
       const double friction_rate = friction.gamma * w_r * w_r;
-      const double theta =
-          pair_gaussian_pair_noise(friction.seed, particles.id[i], particles.id[j], step);
+      const double theta = pair_noise(noise, particles.id[i], particles.id[j], step);
       const double random_impulse = std::sqrt(2.0 * friction.gamma * pair_thermal_energy(i, j)) *
                                     w_r * theta * half_dt / sqrt_dt;
       auto approach = [&] {

@@ -2,50 +2,62 @@
 
 #include <cmath>
 
-#include "kernels/pair_noise.hpp"
+#include "kernels/pair_force_loop.hpp"
+#include "kernels/pair_style.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::dpd {
 
+namespace {
+
+// A pair formula that adds nothing, so that the friction term can run
+// through the shared loop on its own, out to a DPD cutoff longer than the
+// conservative one.
+struct NoConservativeForce {
+  double cutoff_squared;
+  void evaluate(std::size_t /*i*/, std::size_t /*j*/, double /*r2*/, double& energy,
+                double& force_over_r) const {
+    energy = 0.0;
+    force_over_r = 0.0;
+  }
+};
+
+}  // namespace
+
+PairFrictionTerm::PairFrictionTerm(const DpdPairFriction& friction,
+                                   const std::vector<Vec3>& velocity_, std::int64_t step_,
+                                   double dt)
+    : velocity(velocity_.data()),
+      noise(friction.seed, friction.noise),
+      step(step_),
+      cutoff(friction.cutoff),
+      inverse_cutoff(1.0 / friction.cutoff),
+      // γ (g/mol/ps) · v (Å/ps) is a momentum rate; mvv2e turns it into
+      // eV/Å, and σ = sqrt(2 γ k_B T / mvv2e) in the same mass units.
+      friction_factor(friction.gamma * units::kMvv2e),
+      noise_factor(std::sqrt(2.0 * friction.gamma * units::kBoltzmann * friction.temperature *
+                             units::kMvv2e / dt)) {}
+
 void add_dissipative_random_forces(DpdParticles& particles, const std::vector<Vec3>& velocity,
                                    const HalfNeighbourList& list, const DpdPairFriction& friction,
                                    std::int64_t step, double dt) {
-  using units::kBoltzmann;
-  using units::kMvv2e;
-  // Both prefactors in eV/Å per unit weight: γ (g/mol/ps) · v (Å/ps) is a
-  // momentum rate, and σ = sqrt(2 γ k_B T / mvv2e) in the same mass units.
-  const double friction_factor = friction.gamma * kMvv2e;
-  const double noise_factor =
-      std::sqrt(2.0 * friction.gamma * kBoltzmann * friction.temperature * kMvv2e / dt);
-  const double cutoff_squared = friction.cutoff * friction.cutoff;
-  const double inverse_cutoff = 1.0 / friction.cutoff;
+  const PairFrictionTerm term(friction, velocity, step, dt);
+  pair_force_loop(NoConservativeForce{friction.cutoff * friction.cutoff}, particles, list,
+                  Tally::kForcesOnly, &term);
+}
 
-  const std::size_t n = list.particle_count();
-  const HalfNeighbourList::Entry* entries = list.entries();
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t k = list.first(i); k < list.first(i + 1); ++k) {
-      const std::size_t j = HalfNeighbourList::neighbour(entries[k]);
-      const Vec3 d = list.separation(particles.x.data(), i, entries[k]);
-      const double dx = d[0], dy = d[1], dz = d[2];
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      if (r2 >= cutoff_squared) continue;
-      const double r = std::sqrt(r2);
-      const double ex = dx / r, ey = dy / r, ez = dz / r;
-      const double w_r = 1.0 - r * inverse_cutoff;
-      const double approach = ex * (velocity[i][0] - velocity[j][0]) +
-                              ey * (velocity[i][1] - velocity[j][1]) +
-                              ez * (velocity[i][2] - velocity[j][2]);
-      const double theta =
-          pair_gaussian_pair_noise(friction.seed, particles.id[i], particles.id[j], step);
-      const double magnitude = -friction_factor * w_r * w_r * approach + noise_factor * w_r * theta;
-      particles.f[i][0] += magnitude * ex;
-      particles.f[i][1] += magnitude * ey;
-      particles.f[i][2] += magnitude * ez;
-      particles.f[j][0] -= magnitude * ex;
-      particles.f[j][1] -= magnitude * ey;
-      particles.f[j][2] -= magnitude * ez;
-    }
+PairResult add_conservative_and_friction_forces(PairStyle& pair, DpdParticles& particles,
+                                                const std::vector<Vec3>& velocity,
+                                                const HalfNeighbourList& list,
+                                                const DpdPairFriction& friction, std::int64_t step,
+                                                double dt, Tally tally) {
+  if (friction.cutoff <= pair.cutoff()) {
+    const PairFrictionTerm term(friction, velocity, step, dt);
+    return pair.compute(particles, list, tally, &term);
   }
+  PairResult result = pair.compute(particles, list, tally);
+  add_dissipative_random_forces(particles, velocity, list, friction, step, dt);
+  return result;
 }
 
 }  // namespace pbms::dpd

@@ -30,8 +30,9 @@ LjNm::LjNm(double e0, double r0, double n, double m, double cutoff, bool shift)
   }
 }
 
-PairResult LjNm::compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) {
-  return pair_force_loop(kernel_, particles, list, tally);
+PairResult LjNm::compute_forces(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
+                                const PairFrictionTerm* friction) {
+  return pair_force_loop(kernel_, particles, list, tally, friction);
 }
 
 }  // namespace pbms::dpd

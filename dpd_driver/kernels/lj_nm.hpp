@@ -43,9 +43,12 @@ class LjNm final : public PairStyle {
 
   LjNm(double e0, double r0, double n, double m, double cutoff, bool shift);
 
-  PairResult compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) override;
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
+
+ protected:
+  PairResult compute_forces(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
+                            const PairFrictionTerm* friction) override;
 
  private:
   Kernel kernel_;

@@ -35,8 +35,9 @@ Morse::Morse(double d0, double alpha, double r0, double cutoff, bool shift)
   }
 }
 
-PairResult Morse::compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) {
-  return pair_force_loop(kernel_, particles, list, tally);
+PairResult Morse::compute_forces(DpdParticles& particles, const HalfNeighbourList& list,
+                                 Tally tally, const PairFrictionTerm* friction) {
+  return pair_force_loop(kernel_, particles, list, tally, friction);
 }
 
 }  // namespace pbms::dpd

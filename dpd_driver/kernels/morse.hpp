@@ -40,9 +40,12 @@ class Morse final : public PairStyle {
 
   Morse(double d0, double alpha, double r0, double cutoff, bool shift);
 
-  PairResult compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) override;
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
+
+ protected:
+  PairResult compute_forces(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
+                            const PairFrictionTerm* friction) override;
 
  private:
   Kernel kernel_;

@@ -1,5 +1,8 @@
 // The one loop over a half neighbour list that every conservative style runs,
-// with the style's pair formula inlined through a template parameter.
+// with the style's pair formula inlined through a template parameter, and,
+// when the DPD thermostat is on, the dissipative and random pair forces
+// evaluated in the same pass (the pair's separation, its cutoff test and the
+// force scatter are then paid once).
 //
 // A Kernel provides
 //   double cutoff_squared;                                    // Å^2
@@ -8,29 +11,44 @@
 // where energy is the pair's contribution (eV) and force_over_r = −(dE/dr)/r
 // (eV/Å^2), so that the force on i is force_over_r · r_ij. i and j let a
 // many-body style use per-particle quantities; pair styles ignore them.
+//
+// A friction term reaches only pairs inside the kernel's cutoff, so its own
+// cutoff must not be longer (PairStyle::compute checks). The tallied virial
+// is the conservative one.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 
+#include "kernels/dpd_pair_friction.hpp"
 #include "kernels/dpd_particles.hpp"
 #include "kernels/half_neighbour_list.hpp"
+#include "kernels/pair_noise.hpp"
 #include "kernels/pair_style.hpp"
 
 namespace pbms::dpd {
 
-template <Tally kTally, class Kernel>
+template <Tally kTally, bool kFriction, class Kernel>
 PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
-                           const HalfNeighbourList& list) {
+                           const HalfNeighbourList& list, const PairFrictionTerm* friction) {
   constexpr bool kTallied = kTally == Tally::kEnergyAndVirial;
-  // Each particle's neighbours pass in batches through three loops: gather
-  // the pairs inside the cutoff, evaluate the pair formula, scatter forces.
-  // The middle loop has no memory dependence between pairs, so a branch-free
-  // formula vectorises there; one fused loop would stay scalar.
+  // Pairs pass in batches through separate loops: gather the pairs inside
+  // the cutoff, evaluate the pair formula (and draw the noise), scatter the
+  // forces. The middle loops have no memory dependence between pairs, so a
+  // branch-free formula vectorises there; one fused loop would stay scalar.
+  // A batch runs across particles, so that it is full: the noise draw works
+  // on whole vectors of pairs, and a particle has fewer neighbours than
+  // a batch holds.
   constexpr int kBatch = 64;
   alignas(64) double dx[kBatch], dy[kBatch], dz[kBatch], r2[kBatch];
   alignas(64) double pair_energy[kBatch], force_over_r[kBatch];
-  alignas(64) std::size_t neighbour[kBatch];
+  alignas(64) std::size_t owner[kBatch], neighbour[kBatch];
+  // The friction term's: relative velocities, the pair's ids, θ and the
+  // friction force over r.
+  alignas(64) double dvx[kBatch], dvy[kBatch], dvz[kBatch], theta[kBatch], friction_over_r[kBatch];
+  alignas(64) std::uint32_t id_low[kBatch], id_high[kBatch];
 
   const std::size_t n = list.particle_count();
   const Vec3* x = particles.x.data();
@@ -38,64 +56,115 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
   const HalfNeighbourList::Entry* entries = list.entries();
   const auto& shifts = list.shifts();
   const double cutoff_squared = kernel.cutoff_squared;
+  const Vec3* v = kFriction ? friction->velocity : nullptr;
+  const std::int64_t* id = particles.id.data();
 
   double energy = 0.0;
   double vxx = 0.0, vyy = 0.0, vzz = 0.0, vxy = 0.0, vxz = 0.0, vyz = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0;
-    const std::size_t end = list.first(i + 1);
-    for (std::size_t k = list.first(i); k < end;) {
-      const std::size_t batch_end = std::min(end, k + kBatch);
-      int count = 0;
-      // Every pair is written, and kept by advancing count only when inside.
-      for (; k < batch_end; ++k) {
-        const HalfNeighbourList::Entry e = entries[k];
-        const std::size_t j = HalfNeighbourList::neighbour(e);
-        const Vec3& s = shifts[HalfNeighbourList::shift_code(e)];
-        const double ex = xi - x[j][0] + s[0];
-        const double ey = yi - x[j][1] + s[1];
-        const double ez = zi - x[j][2] + s[2];
-        const double d2 = ex * ex + ey * ey + ez * ez;
-        dx[count] = ex;
-        dy[count] = ey;
-        dz[count] = ez;
-        r2[count] = d2;
-        neighbour[count] = j;
-        count += d2 < cutoff_squared ? 1 : 0;
-      }
+
+  auto process = [&](int count) {
+    if (count == 0) return;
+    for (int m = 0; m < count; ++m) {
+      kernel.evaluate(owner[m], neighbour[m], r2[m], pair_energy[m], force_over_r[m]);
+    }
+    if constexpr (kFriction) {
+      // Velocities and ids of the kept pairs only, gathered apart from the
+      // cutoff test so that its loop stays light.
       for (int m = 0; m < count; ++m) {
-        kernel.evaluate(i, neighbour[m], r2[m], pair_energy[m], force_over_r[m]);
+        const std::size_t i = owner[m], j = neighbour[m];
+        dvx[m] = v[i][0] - v[j][0];
+        dvy[m] = v[i][1] - v[j][1];
+        dvz[m] = v[i][2] - v[j][2];
+        const auto id_i = static_cast<std::uint32_t>(id[i]);
+        const auto id_j = static_cast<std::uint32_t>(id[j]);
+        id_low[m] = std::min(id_i, id_j);
+        id_high[m] = std::max(id_i, id_j);
       }
+      pair_noise_batch(friction->noise, id_low, id_high, friction->step, count, theta);
+      const double inverse_cutoff = friction->inverse_cutoff;
+      const double friction_factor = friction->friction_factor;
+      const double noise_factor = friction->noise_factor;
       for (int m = 0; m < count; ++m) {
-        const std::size_t j = neighbour[m];
-        const double fx = dx[m] * force_over_r[m];
-        const double fy = dy[m] * force_over_r[m];
-        const double fz = dz[m] * force_over_r[m];
-        fxi += fx;
-        fyi += fy;
-        fzi += fz;
-        f[j][0] -= fx;
-        f[j][1] -= fy;
-        f[j][2] -= fz;
-        if constexpr (kTallied) {
-          // A pair with a ghost is evaluated on both its ranks; each
-          // tallies half, so that the sums over ranks count it once.
-          const double w = j < n ? 1.0 : 0.5;
-          energy += w * pair_energy[m];
-          vxx += w * dx[m] * fx;
-          vyy += w * dy[m] * fy;
-          vzz += w * dz[m] * fz;
-          vxy += w * dx[m] * fy;
-          vxz += w * dx[m] * fz;
-          vyz += w * dy[m] * fz;
-        }
+        const double inverse_r = 1.0 / std::sqrt(r2[m]);
+        const double w_r = std::max(0.0, 1.0 - r2[m] * inverse_r * inverse_cutoff);
+        // (e_ij · v_ij), from r_ij · v_ij / r.
+        const double approach = (dx[m] * dvx[m] + dy[m] * dvy[m] + dz[m] * dvz[m]) * inverse_r;
+        friction_over_r[m] =
+            (noise_factor * theta[m] - friction_factor * w_r * approach) * w_r * inverse_r;
       }
     }
-    f[i][0] += fxi;
-    f[i][1] += fyi;
-    f[i][2] += fzi;
+    // Forces on the owner are summed while it stays the same, rather than
+    // stored pair by pair into one f[i].
+    std::size_t current = owner[0];
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0;
+    for (int m = 0; m < count; ++m) {
+      const std::size_t i = owner[m];
+      const std::size_t j = neighbour[m];
+      if (i != current) {
+        f[current][0] += fxi;
+        f[current][1] += fyi;
+        f[current][2] += fzi;
+        fxi = fyi = fzi = 0.0;
+        current = i;
+      }
+      double total_over_r = force_over_r[m];
+      if constexpr (kFriction) total_over_r += friction_over_r[m];
+      const double fx = dx[m] * total_over_r;
+      const double fy = dy[m] * total_over_r;
+      const double fz = dz[m] * total_over_r;
+      fxi += fx;
+      fyi += fy;
+      fzi += fz;
+      f[j][0] -= fx;
+      f[j][1] -= fy;
+      f[j][2] -= fz;
+      if constexpr (kTallied) {
+        // A pair with a ghost is evaluated on both its ranks; each
+        // tallies half, so that the sums over ranks count it once.
+        const double w = j < n ? 1.0 : 0.5;
+        energy += w * pair_energy[m];
+        const double wf = w * force_over_r[m];
+        vxx += wf * dx[m] * dx[m];
+        vyy += wf * dy[m] * dy[m];
+        vzz += wf * dz[m] * dz[m];
+        vxy += wf * dx[m] * dy[m];
+        vxz += wf * dx[m] * dz[m];
+        vyz += wf * dy[m] * dz[m];
+      }
+    }
+    f[current][0] += fxi;
+    f[current][1] += fyi;
+    f[current][2] += fzi;
+  };
+
+  int count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const std::size_t end = list.first(i + 1);
+    for (std::size_t k = list.first(i); k < end; ++k) {
+      // Every pair is written, and kept by advancing count only when inside.
+      const HalfNeighbourList::Entry e = entries[k];
+      const std::size_t j = HalfNeighbourList::neighbour(e);
+      const Vec3& s = shifts[HalfNeighbourList::shift_code(e)];
+      const double ex = xi - x[j][0] + s[0];
+      const double ey = yi - x[j][1] + s[1];
+      const double ez = zi - x[j][2] + s[2];
+      const double d2 = ex * ex + ey * ey + ez * ez;
+      dx[count] = ex;
+      dy[count] = ey;
+      dz[count] = ez;
+      r2[count] = d2;
+      owner[count] = i;
+      neighbour[count] = j;
+      count += d2 < cutoff_squared ? 1 : 0;
+      if (count == kBatch) {
+        process(count);
+        count = 0;
+      }
+    }
   }
+  process(count);
+
   PairResult result;
   if constexpr (kTallied) {
     result.energy = energy;
@@ -104,14 +173,20 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
   return result;
 }
 
-// Runs the loop with the tally chosen at run time, compiled for both.
+// Runs the loop with the tally and the friction term chosen at run time,
+// compiled for all four.
 template <class Kernel>
 PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
-                           const HalfNeighbourList& list, Tally tally) {
-  if (tally == Tally::kEnergyAndVirial) {
-    return pair_force_loop<Tally::kEnergyAndVirial>(kernel, particles, list);
+                           const HalfNeighbourList& list, Tally tally,
+                           const PairFrictionTerm* friction) {
+  const bool tallied = tally == Tally::kEnergyAndVirial;
+  if (friction != nullptr) {
+    return tallied
+               ? pair_force_loop<Tally::kEnergyAndVirial, true>(kernel, particles, list, friction)
+               : pair_force_loop<Tally::kForcesOnly, true>(kernel, particles, list, friction);
   }
-  return pair_force_loop<Tally::kForcesOnly>(kernel, particles, list);
+  return tallied ? pair_force_loop<Tally::kEnergyAndVirial, false>(kernel, particles, list, nullptr)
+                 : pair_force_loop<Tally::kForcesOnly, false>(kernel, particles, list, nullptr);
 }
 
 }  // namespace pbms::dpd

@@ -1,32 +1,66 @@
 // The random number θ_ij of a DPD pair, drawn from a counter-based generator
-// (Random123 Philox4x64-10) so that it depends only on the run seed, the
+// (Random123's Philox4x32-10) so that it depends only on the run seed, the
 // unordered pair of global ids and the step: the same on every rank and for
 // every decomposition, with no generator state to store or communicate (the
 // scheme HOOMD-blue uses).
 //
-// Key and counter layout (two and four 64-bit words):
-//   key     = { seed, kDpdPairNoiseStream }
-//   counter = { min(id_a, id_b), max(id_a, id_b), step, 0 }
-// The stream word keeps this use of the seed apart from any other Philox
-// draw a driver keys with the same seed; the last counter word is free for a
-// second draw of the same pair and step.
+// Key and counter layout (32-bit words):
+//   key     = { low, high half of splitmix64(seed ^ kDpdPairNoiseStream) }
+//   counter = { min(id_a, id_b), max(id_a, id_b), low, high half of step }
+// Ids must therefore lie in [0, 2^32); check_pair_noise_ids() says so before
+// a run starts. The stream constant keeps this use of a seed apart from every
+// other Philox draw keyed with the same seed.
 //
-// Distribution: Box–Muller on the first two 64-bit outputs (each turned into
-// a uniform in the open interval (0, 1) from its top 53 bits), keeping the
-// cosine branch. An exact unit Gaussian costs a log, a sqrt and a cos per
-// pair; the cheaper uniform·√3 would match mean and variance only, and a
-// Gaussian keeps the random force's increments Gaussian at any time step.
+// Distributions (θ has zero mean and unit variance in both):
+//   gaussian  Box–Muller on two uniforms, each from 53 bits of the output
+//             (words 1:0 and 3:2), keeping the cosine branch;
+//   uniform   √3 (2u − 1), u from words 1:0. The choice of Groot & Warren
+//             (1997) and of HOOMD-blue's DPD: the random force enters the
+//             equations of motion only through its first two moments, so the
+//             stationary state is the same as with Gaussian θ to O(Δt).
+//
+// Speed is the point of this file: the thermostat's cost is dominated by the
+// draw. Philox runs 16 (AVX-512) or 8 (AVX2) pairs at a time when the
+// processor has the instructions, chosen at run time; it is integer
+// arithmetic, so every path gives the same bits. The log and cos of
+// Box–Muller are branch-free polynomials (pair_noise.cpp) rather than libm
+// calls, so that they vectorise and give the same value in a vector lane as
+// in the scalar remainder: a pair's θ must not depend on where in a batch it
+// fell, which the decomposition decides.
 #pragma once
 
 #include <cstdint>
+#include <string_view>
+
+#include "kernels/dpd_particles.hpp"
 
 namespace pbms::dpd {
 
 // "DPDpair" in ASCII.
 inline constexpr std::uint64_t kDpdPairNoiseStream = 0x0044504450616972ULL;
 
-// Zero mean, unit variance; symmetric in (id_a, id_b).
-double pair_gaussian_pair_noise(std::uint64_t seed, std::int64_t id_a, std::int64_t id_b,
-                                std::int64_t step);
+enum class PairNoiseDistribution { kGaussian, kUniform };
+
+// The name a user writes ("gaussian", "uniform"); throws Error otherwise.
+PairNoiseDistribution pair_noise_distribution(std::string_view name);
+
+struct PairNoise {
+  PairNoise() = default;
+  PairNoise(std::uint64_t seed, PairNoiseDistribution distribution);
+  std::uint32_t key[2] = {0, 0};
+  PairNoiseDistribution distribution = PairNoiseDistribution::kGaussian;
+};
+
+// θ for `count` pairs of one step: theta[m] belongs to the ids
+// (id_low[m], id_high[m]), id_low[m] ≤ id_high[m]. Any count ≥ 0.
+void pair_noise_batch(const PairNoise& noise, const std::uint32_t* id_low,
+                      const std::uint32_t* id_high, std::int64_t step, int count, double* theta);
+
+// One pair, in either order; bit-identical to the batch.
+double pair_noise(const PairNoise& noise, std::int64_t id_a, std::int64_t id_b, std::int64_t step);
+
+// Throws Error naming the first id outside [0, 2^32) (only ids in 32 bits
+// fit the counter).
+void check_pair_noise_ids(const DpdParticles& particles);
 
 }  // namespace pbms::dpd

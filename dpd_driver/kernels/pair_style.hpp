@@ -35,15 +35,19 @@ struct PairResult {
   std::array<double, 6> virial{};
 };
 
+struct PairFrictionTerm;
+
 class PairStyle {
  public:
   virtual ~PairStyle() = default;
 
   // Adds the conservative forces to particles.f (the caller clears f, so
-  // that dissipative and random forces can be summed into the same array).
-  // The list must have been built with at least this style's cutoff.
-  virtual PairResult compute(DpdParticles& particles, const HalfNeighbourList& list,
-                             Tally tally) = 0;
+  // that dissipative and random forces can be summed into the same array),
+  // and with a friction term the DPD pair forces too, in the same pass; its
+  // cutoff must not exceed this style's. The list must have been built with
+  // at least this style's cutoff.
+  PairResult compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
+                     const PairFrictionTerm* friction = nullptr);
   // Beyond this distance (Å) the style contributes nothing.
   [[nodiscard]] virtual double cutoff() const = 0;
   // The registry name, as a user writes it in a config.
@@ -57,6 +61,9 @@ class PairStyle {
   void set_ghost_forward(GhostForward forward) { ghost_forward_ = std::move(forward); }
 
  protected:
+  virtual PairResult compute_forces(DpdParticles& particles, const HalfNeighbourList& list,
+                                    Tally tally, const PairFrictionTerm* friction) = 0;
+
   GhostForward ghost_forward_;
 };
 

@@ -109,8 +109,9 @@ void PairTable::interpolate(double r, double& energy, double& force) const {
   force = force_over_r * r;
 }
 
-PairResult PairTable::compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) {
-  return pair_force_loop(kernel_, particles, list, tally);
+PairResult PairTable::compute_forces(DpdParticles& particles, const HalfNeighbourList& list,
+                                     Tally tally, const PairFrictionTerm* friction) {
+  return pair_force_loop(kernel_, particles, list, tally, friction);
 }
 
 }  // namespace pbms::dpd

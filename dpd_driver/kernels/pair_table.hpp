@@ -60,12 +60,15 @@ class PairTable final : public PairStyle {
 
   PairTable(PairTableRows rows, double cutoff);
 
-  PairResult compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) override;
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
 
   // The interpolated pair energy (eV) and force −dU/dr (eV/Å) at distance r.
   void interpolate(double r, double& energy, double& force) const;
+
+ protected:
+  PairResult compute_forces(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
+                            const PairFrictionTerm* friction) override;
 
  private:
   PairTableRows rows_;

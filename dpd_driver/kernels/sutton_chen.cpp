@@ -25,8 +25,8 @@ SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, d
   }
 }
 
-PairResult SuttonChen::compute(DpdParticles& particles, const HalfNeighbourList& list,
-                               Tally tally) {
+PairResult SuttonChen::compute_forces(DpdParticles& particles, const HalfNeighbourList& list,
+                                      Tally tally, const PairFrictionTerm* friction) {
   // Rows of the list are the owned particles; ghosts follow them.
   const std::size_t count = list.particle_count();
   density_.assign(particles.size(), 0.0);
@@ -60,7 +60,7 @@ PairResult SuttonChen::compute(DpdParticles& particles, const HalfNeighbourList&
   if (ghost_forward_) ghost_forward_(half_inverse_sqrt_density_);
   kernel_.half_inverse_sqrt_density = half_inverse_sqrt_density_.data();
 
-  PairResult result = pair_force_loop(kernel_, particles, list, tally);
+  PairResult result = pair_force_loop(kernel_, particles, list, tally, friction);
   if (tally == Tally::kEnergyAndVirial) result.energy -= kernel_.epsilon * kernel_.c * embedding;
   return result;
 }

@@ -50,12 +50,15 @@ class SuttonChen final : public PairStyle {
 
   SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff);
 
-  PairResult compute(DpdParticles& particles, const HalfNeighbourList& list, Tally tally) override;
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
 
   // ρ_i of the last compute(), one per particle; complete for owned ones.
   [[nodiscard]] const std::vector<double>& density() const { return density_; }
+
+ protected:
+  PairResult compute_forces(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
+                            const PairFrictionTerm* friction) override;
 
  private:
   Kernel kernel_;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "kernels/maxwell_boltzmann_velocities.hpp"
+#include "kernels/pair_noise.hpp"
 #include "kernels/pair_style_registry.hpp"
 #include "pbms/error.hpp"
 #include "pbms/geometry/lattice_fill.hpp"
@@ -199,6 +200,7 @@ DpdModel build_dpd_model(const YAML::Node& p, const YAML::Node& material, std::u
   m.settings.friction.temperature =
       p["bath_temperature"] ? p["bath_temperature"].as<double>() : temperature;
   m.settings.friction.seed = seed;
+  m.settings.friction.noise = pair_noise_distribution(p["noise"].as<std::string>());
   m.settings.heat_capacity = p["heat_capacity"].as<double>() * units::kBoltzmann;
   if (m.settings.scheme == DpdScheme::kShardlowDpde) {
     // Internal temperature starts at the kinetic one (or the bath's).

@@ -111,6 +111,11 @@ std::vector<Param> common_params() {
       Param::real("dpd_cutoff", Dimension::kLength, "Range of the DPD weight functions")
           .def(10.0)
           .above(0),
+      Param::choice("noise", {"gaussian", "uniform"},
+                    "Distribution of the pair random number θ (zero mean, unit variance): "
+                    "gaussian (as LAMMPS pair dpd), or uniform (Groot & Warren 1997, "
+                    "HOOMD-blue; cheaper to draw)")
+          .def(std::string("gaussian")),
       Param::real("bath_temperature", Dimension::kTemperature,
                   "Temperature of the DPD thermostat (isothermal schemes); default `temperature`")
           .at_least(0),

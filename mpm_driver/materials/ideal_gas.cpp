@@ -1,6 +1,11 @@
 #include "ideal_gas.hpp"
 
+// GCC 12 warns inside its own AVX-512 intrinsics when Eigen uses them
+// (GCC bug 105593, fixed in 13); nothing of ours is uninitialised.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/LU>
+#pragma GCC diagnostic pop
 #include <algorithm>
 #include <cmath>
 #include <sstream>

@@ -6,7 +6,12 @@
 #include <cstdint>
 #include <vector>
 
+// GCC 12 warns inside its own AVX-512 intrinsics when Eigen uses them
+// (GCC bug 105593, fixed in 13); nothing of ours is uninitialised.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/LU>  // determinant()
+#pragma GCC diagnostic pop
 
 #include "materials/material_point_state.hpp"
 #include "materials/symmetric_tensor.hpp"
