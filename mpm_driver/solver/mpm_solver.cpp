@@ -88,7 +88,8 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape
         "with 1 rank, or use plain gradients");
   }
   const auto n = static_cast<size_t>(local_.node_count());
-  node_.assign(n, {});
+  sums_.assign(n, NodeLanes{});
+  kin_.assign(n, NodeLanes{});
   velocity_.assign(n, {0.0, 0.0, 0.0});
   acceleration_.assign(n, {0.0, 0.0, 0.0});
   remap_velocity_.assign(n, {0.0, 0.0, 0.0});
@@ -143,86 +144,76 @@ double MpmSolver::alpha(const MaterialPoints& points, size_t p) const {
   return opt_.ddmp_face_vanishing ? grid::face_vanishing_blend(local_, points.x[p]) : 0.0;
 }
 
-void MpmSolver::sum_shared(double* first, int components) {
-  if (patch_.sum_shared) patch_.sum_shared(first, components, 7);
+void MpmSolver::sum_shared(int first, int components) {
+  if (patch_.sum_shared) {
+    patch_.sum_shared(reinterpret_cast<double*>(sums_.data()) + first, components, sums::kStride);
+  }
 }
 
-// Mass, and optionally momentum and the internal and external forces, of
-// every point to its nodes (s-1 to s-4). The forces use the stress the
-// points carry now, which under update-stress-last is the previous step's.
+// Mass, momentum and optionally the internal and external forces of every
+// point to its nodes (s-1 to s-4). The forces use the stress the points
+// carry now, which under update-stress-last is the previous step's. A
+// point adds to each node N (m, m v, f_ext) - V sigma grad N as one
+// record: four whole-record multiply-adds per node.
 template <class Eval>
 void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
-                        const BoundaryConditions& bc, bool momentum, bool force) {
-  std::fill(node_.begin(), node_.end(), NodeSums{});
-  rigid_.assign(bc.point_velocities.size(), std::vector<double>(node_.size(), 0.0));
+                        const BoundaryConditions& bc, bool force) {
+  std::fill(sums_.begin(), sums_.end(), NodeLanes{});
+  rigid_.assign(bc.point_velocities.size(), std::vector<double>(sums_.size(), 0.0));
   const bool dual = force && opt_.ddmp;
-  if (dual) S_.assign(node_.size(), {0, 0, 0, 0, 0, 0});
+  if (dual) S_.assign(sums_.size(), {0, 0, 0, 0, 0, 0});
   const double kv = opt_.units.stress_volume_to_energy;
   const double kf = opt_.units.force_per_mass_to_accel;
   const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
-  if (momentum && force && !dual && !body && bc.loads.empty() && bc.point_velocities.empty()) {
-    // The common case without external forces, rigid groups or DDMP: the
-    // loop below with its rarely taken branches left out (alpha is 1 and
-    // the external force 0).
-    for (size_t p = 0; p < points.size(); ++p) {
-      const auto& s = locate(eval, points, p);
-      const double m = points.mass[p];
-      const Vec3& v = points.v[p];
-      const double w = points.volume(p) * kv;
-      const auto& t = points.state[p].stress.voigt;  // xx yy zz yz xz xy
-      for (int q = 0; q < s.count; ++q) {
-        const auto qq = static_cast<size_t>(q);
-        NodeSums& nd = node_[static_cast<size_t>(s.node[qq])];
-        const double Nm = s.N[qq] * m;
-        nd.mass += Nm;
-        add_scaled(nd.momentum, Nm, v);
-        const auto& g = s.dN[qq];
-        nd.force[0] -= w * (t[0] * g[0] + t[5] * g[1] + t[4] * g[2]);
-        nd.force[1] -= w * (t[5] * g[0] + t[1] * g[1] + t[3] * g[2]);
-        nd.force[2] -= w * (t[4] * g[0] + t[3] * g[1] + t[2] * g[2]);
-      }
-    }
-    return;
-  }
+  const bool external = body || !bc.loads.empty();
+  const bool rigid = !bc.point_velocities.empty();
   for (size_t p = 0; p < points.size(); ++p) {
     const auto& s = locate(eval, points, p);
     const double m = points.mass[p];
     const Vec3& v = points.v[p];
-    Vec3 fext{0.0, 0.0, 0.0};
+    Lanes8 pn = {m, m * v[0], m * v[1], m * v[2], 0.0, 0.0, 0.0, 0.0};
+    Lanes8 gx{}, gy{}, gz{};
     double V = 0.0, al = 1.0;
-    const std::array<double, 6>* sg = nullptr;
     if (force) {
-      if (body) fext = (m / kf) * bc.body_acceleration;
-      for (const auto& load : bc.loads) {
-        if (points.in_group(p, load.group_mask)) add_to(fext, load.force_per_point);
+      if (external) [[unlikely]] {
+        Vec3 fext{0.0, 0.0, 0.0};
+        if (body) fext = (m / kf) * bc.body_acceleration;
+        for (const auto& load : bc.loads) {
+          if (points.in_group(p, load.group_mask)) add_to(fext, load.force_per_point);
+        }
+        pn[sums::kForce] = fext[0];
+        pn[sums::kForce + 1] = fext[1];
+        pn[sums::kForce + 2] = fext[2];
       }
       V = points.volume(p) * kv;
-      al = alpha(points, p);
-      sg = &points.state[p].stress.voigt;  // xx yy zz yz xz xy
+      if (dual) al = alpha(points, p);
+      const double w = -al * V;
+      const auto& t = points.state[p].stress.voigt;  // xx yy zz yz xz xy
+      gx = Lanes8{0.0, 0.0, 0.0, 0.0, w * t[0], w * t[5], w * t[4], 0.0};
+      gy = Lanes8{0.0, 0.0, 0.0, 0.0, w * t[5], w * t[1], w * t[3], 0.0};
+      gz = Lanes8{0.0, 0.0, 0.0, 0.0, w * t[4], w * t[3], w * t[2], 0.0};
     }
-    for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
-      if (!points.in_group(p, bc.point_velocities[c].group_mask)) continue;
-      for (int q = 0; q < s.count; ++q) {
-        const auto qq = static_cast<size_t>(q);
-        if (s.N[qq] > 0.0) rigid_[c][static_cast<size_t>(s.node[qq])] += s.N[qq];
+    if (rigid) [[unlikely]] {
+      for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+        if (!points.in_group(p, bc.point_velocities[c].group_mask)) continue;
+        for (int q = 0; q < s.count; ++q) {
+          const auto qq = static_cast<size_t>(q);
+          if (s.N[qq] > 0.0) rigid_[c][static_cast<size_t>(s.node[qq])] += s.N[qq];
+        }
       }
     }
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
-      NodeSums& nd = node_[static_cast<size_t>(s.node[qq])];
-      const double N = s.N[qq];
-      nd.mass += N * m;
-      if (momentum) add_scaled(nd.momentum, N * m, v);
-      if (!force) continue;
-      const auto& t = *sg;
-      const auto& g = s.dN[qq];
-      const double w = al * V;
-      nd.force[0] += N * fext[0] - w * (t[0] * g[0] + t[5] * g[1] + t[4] * g[2]);
-      nd.force[1] += N * fext[1] - w * (t[5] * g[0] + t[1] * g[1] + t[3] * g[2]);
-      nd.force[2] += N * fext[2] - w * (t[4] * g[0] + t[3] * g[1] + t[2] * g[2]);
-      if (dual && al < 1.0) {
+      const auto g = grid::grad(s, q);
+      sums_[static_cast<size_t>(s.node[qq])].lanes +=
+          s.N[qq] * pn + g[0] * gx + g[1] * gy + g[2] * gz;
+    }
+    if (dual && al < 1.0) {
+      const auto& t = points.state[p].stress.voigt;
+      for (int q = 0; q < s.count; ++q) {
+        const auto qq = static_cast<size_t>(q);
         auto& S = S_[static_cast<size_t>(s.node[qq])];
-        const double wd = (1.0 - al) * V * N;
+        const double wd = (1.0 - al) * V * s.N[qq];
         for (size_t c = 0; c < 6; ++c) S[c] += wd * t[c];
       }
     }
@@ -234,11 +225,11 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
     const auto& t = S_[j];
     if (t == std::array<double, 6>{0, 0, 0, 0, 0, 0}) continue;
     for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
-      auto& f = node_[static_cast<size_t>(e.node)].force;
+      auto& f = sums_[static_cast<size_t>(e.node)].lanes;
       const auto& d = e.d;
-      f[0] -= t[0] * d[0] + t[5] * d[1] + t[4] * d[2];
-      f[1] -= t[5] * d[0] + t[1] * d[1] + t[3] * d[2];
-      f[2] -= t[4] * d[0] + t[3] * d[1] + t[2] * d[2];
+      f[sums::kForce] -= t[0] * d[0] + t[5] * d[1] + t[4] * d[2];
+      f[sums::kForce + 1] -= t[5] * d[0] + t[1] * d[1] + t[3] * d[2];
+      f[sums::kForce + 2] -= t[4] * d[0] + t[3] * d[1] + t[2] * d[2];
     }
   }
 }
@@ -261,9 +252,10 @@ void MpmSolver::apply_node_constraints(const BoundaryConditions& bc, std::vector
 }
 
 void MpmSolver::nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const {
-  for (size_t i = 0; i < node_.size(); ++i) {
-    out[i] = node_[i].mass > mass_floor_ ? (1.0 / node_[i].mass) * node_[i].momentum
-                                         : Vec3{0.0, 0.0, 0.0};
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    const Lanes8& r = sums_[i].lanes;
+    out[i] = r[sums::kMass] > mass_floor_ ? (1.0 / r[sums::kMass]) * lanes3(r, sums::kMomentum)
+                                          : Vec3{0.0, 0.0, 0.0};
   }
   apply_node_constraints(bc, out, true);
 }
@@ -272,7 +264,7 @@ void MpmSolver::nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G)
   // Dual-domain nodal velocity gradient G_j = sum_i v_i (x) D_ji, later
   // interpolated to the points with N (seed Appendix 2's nodal central
   // difference, in 3-D).
-  G.assign(node_.size(), Mat3::Zero());
+  G.assign(sums_.size(), Mat3::Zero());
   for (size_t j = 0; j < G.size(); ++j) {
     for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
       const auto& vi = v[static_cast<size_t>(e.node)];
@@ -284,30 +276,41 @@ void MpmSolver::nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G)
   }
 }
 
+void MpmSolver::pack_kinematics(const std::vector<Vec3>& first, const std::vector<Vec3>& second) {
+  for (size_t i = 0; i < kin_.size(); ++i) {
+    const Vec3& a = first[i];
+    const Vec3& b = second[i];
+    kin_[i].lanes = Lanes8{a[0], a[1], a[2], b[0], b[1], b[2], 0.0, 0.0};
+  }
+}
+
 template <class Stencil>
-[[gnu::always_inline]] inline void MpmSolver::velocity_gradient(const MaterialPoints& points,
-                                                                size_t p, const Stencil& s,
-                                                                const std::vector<Vec3>& v,
-                                                                const std::vector<Mat3>& G,
-                                                                Mat3& L) const {
-  const double al = alpha(points, p);
-  double l[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+[[gnu::always_inline]] inline void MpmSolver::point_kinematics(const MaterialPoints& points,
+                                                               size_t p, const Stencil& s, Mat3& L,
+                                                               Vec3& carried) const {
+  // Lanes 0-2 of lx, ly, lz are the columns of grad v; lanes 3-5 of at are
+  // the carried field.
+  Lanes8 at{}, lx{}, ly{}, lz{};
   for (int q = 0; q < s.count; ++q) {
     const auto qq = static_cast<size_t>(q);
-    const auto& vi = v[static_cast<size_t>(s.node[qq])];
-    const auto& g = s.dN[qq];
-    for (size_t a = 0; a < 3; ++a) {
-      l[a][0] += vi[a] * g[0];
-      l[a][1] += vi[a] * g[1];
-      l[a][2] += vi[a] * g[2];
-    }
+    const Lanes8& r = kin_[static_cast<size_t>(s.node[qq])].lanes;
+    const auto g = grid::grad(s, q);
+    at += s.N[qq] * r;
+    lx += g[0] * r;
+    ly += g[1] * r;
+    lz += g[2] * r;
   }
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) L(a, b) = al * l[a][b];
+  carried = lanes3(at, 3);
+  const double al = alpha(points, p);
+  for (int a = 0; a < 3; ++a) {
+    L(a, 0) = al * lx[a];
+    L(a, 1) = al * ly[a];
+    L(a, 2) = al * lz[a];
+  }
   if (opt_.ddmp && al < 1.0) {
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
-      L += (1.0 - al) * s.N[qq] * G[static_cast<size_t>(s.node[qq])];
+      L += (1.0 - al) * s.N[qq] * G_[static_cast<size_t>(s.node[qq])];
     }
   }
 }
@@ -411,39 +414,42 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   Mat3 L;
 
   if (last) {
-    scatter(eval, points, bc, true, true);  // s-1 to s-4
-    sum_shared(&node_[0].mass, 7);
+    scatter(eval, points, bc, true);  // s-1 to s-4
+    sum_shared(sums::kMass, 7);
     sum_rigid();
   } else {
     // Update-stress-first: the gradient of the mapped velocity updates the
     // stress before it makes the internal force.
-    scatter(eval, points, bc, true, false);
-    sum_shared(&node_[0].mass, 4);
+    scatter(eval, points, bc, false);
+    sum_shared(sums::kMass, 4);
     sum_rigid();
     nodal_velocities(bc, velocity_);
     impose_rigid(bc, velocity_);
     if (opt_.ddmp) nodal_gradient(velocity_, G_);
+    pack_kinematics(velocity_, velocity_);
+    Vec3 unused;
     for (size_t p = 0; p < n; ++p) {
       const auto& s = locate(eval, points, p);
-      velocity_gradient(points, p, s, velocity_, G_, L);
+      point_kinematics(points, p, s, L, unused);
       update_point_stress(points, p, L, dt);
     }
-    scatter(eval, points, bc, true, true);
-    sum_shared(&node_[0].mass, 7);
+    scatter(eval, points, bc, true);
+    sum_shared(sums::kMass, 7);
     sum_rigid();
   }
 
   // Nodal momentum update (s-5, s-6). Constrained components are imposed on
   // the new velocity, and the acceleration is taken from the constrained
   // change, so that FLIP and PIC both honour the constraint.
-  for (size_t i = 0; i < node_.size(); ++i) {
-    const NodeSums& nd = node_[i];
-    node_force_[i] = nd.force;
-    if (nd.mass > mass_floor_) {
-      const double inv = 1.0 / nd.mass;
-      const Vec3 v_old = inv * nd.momentum;
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    const Lanes8& r = sums_[i].lanes;
+    const double mass = r[sums::kMass];
+    node_force_[i] = lanes3(r, sums::kForce);
+    if (mass > mass_floor_) {
+      const double inv = 1.0 / mass;
+      const Vec3 v_old = inv * lanes3(r, sums::kMomentum);
       velocity_[i] = v_old;
-      add_scaled(velocity_[i], dt * kf * inv, nd.force);
+      add_scaled(velocity_[i], dt * kf * inv, node_force_[i]);
       acceleration_[i] = v_old;  // completed below
     } else {
       velocity_[i] = acceleration_[i] = {0.0, 0.0, 0.0};
@@ -453,21 +459,22 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   reaction_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
   for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
     const auto& pv = bc.point_velocities[c];
-    for (size_t i = 0; i < node_.size(); ++i) {
+    for (size_t i = 0; i < sums_.size(); ++i) {
       if (rigid_[c][i] <= 0.0) continue;
+      const double mass = sums_[i].lanes[sums::kMass];
       for (size_t a = 0; a < 3; ++a) {
         if (!pv.axis[a]) continue;
         // The force that holds the node at the group's velocity, counted
         // once per node over all ranks.
-        if (unique_node_[i] && node_[i].mass > mass_floor_) {
-          reaction_[c][a] += node_[i].mass * (pv.velocity[a] - velocity_[i][a]) / (dt * kf);
+        if (unique_node_[i] && mass > mass_floor_) {
+          reaction_[c][a] += mass * (pv.velocity[a] - velocity_[i][a]) / (dt * kf);
         }
         velocity_[i][a] = pv.velocity[a];
       }
     }
   }
-  for (size_t i = 0; i < node_.size(); ++i) {
-    if (node_[i].mass > mass_floor_) {
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    if (sums_[i].lanes[sums::kMass] > mass_floor_) {
       for (size_t a = 0; a < 3; ++a)
         acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
     }
@@ -475,20 +482,21 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
 
   // Grid to points (s-7), and under update-stress-last the remap of the new
   // point momenta with this step's shape functions (s-10) in the same pass.
-  for (auto& nd : node_) nd.momentum = {0.0, 0.0, 0.0};
+  pack_kinematics(acceleration_, velocity_);
+  const Lanes8 keep_all_but_momentum = {1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
+  for (auto& r : sums_) r.lanes *= keep_all_but_momentum;
   const double flip = opt_.flip;
   for (size_t p = 0; p < n; ++p) {
     const auto& s = locate(eval, points, p);
-    Vec3 acc{0, 0, 0}, vel{0, 0, 0};
+    Lanes8 k{};  // lanes 0-2 acceleration, 3-5 velocity
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
-      const auto i = static_cast<size_t>(s.node[qq]);
-      add_scaled(acc, s.N[qq], acceleration_[i]);
-      add_scaled(vel, s.N[qq], velocity_[i]);
+      k += s.N[qq] * kin_[static_cast<size_t>(s.node[qq])].lanes;
     }
     Vec3& vp = points.v[p];
-    for (size_t a = 0; a < 3; ++a) {
-      vp[a] = flip * (vp[a] + dt * acc[a]) + (1.0 - flip) * vel[a];
+    for (int a = 0; a < 3; ++a) {
+      vp[static_cast<size_t>(a)] =
+          flip * (vp[static_cast<size_t>(a)] + dt * k[a]) + (1.0 - flip) * k[a + 3];
     }
     if (prescribed) {
       for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
@@ -502,21 +510,24 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     }
     if (last) {
       const double m = points.mass[p];
+      const Lanes8 pm = {0.0, m * vp[0], m * vp[1], m * vp[2], 0.0, 0.0, 0.0, 0.0};
       for (int q = 0; q < s.count; ++q) {
         const auto qq = static_cast<size_t>(q);
-        add_scaled(node_[static_cast<size_t>(s.node[qq])].momentum, s.N[qq] * m, vp);
+        sums_[static_cast<size_t>(s.node[qq])].lanes += s.N[qq] * pm;
       }
     } else {
+      Vec3 vel = lanes3(k, 3);
       if (prescribed) hold_prescribed(points, bc, p, vel);
       add_scaled(points.x[p], dt, vel);  // s-8
     }
   }
 
   if (!last) return;
-  sum_shared(&node_[0].momentum[0], 3);
+  sum_shared(sums::kMomentum, 3);
   nodal_velocities(bc, remap_velocity_);  // s-11
   impose_rigid(bc, remap_velocity_);
   if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
+  pack_kinematics(remap_velocity_, velocity_);
   // Stress update (s-12 to s-14) at the positions the step started from,
   // then the move with the momentum-update velocity (s-8). Blocks of points:
   // kinematics per point, then one material call per run of points of one
@@ -533,13 +544,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     for (size_t i = 0; i < m; ++i) {
       const size_t p = p0 + i;
       const auto& s = locate(eval, points, p);
-      velocity_gradient(points, p, s, remap_velocity_, G_, Lb[i]);
-      Vec3 vel{0, 0, 0};
-      for (int q = 0; q < s.count; ++q) {
-        const auto qq = static_cast<size_t>(q);
-        add_scaled(vel, s.N[qq], velocity_[static_cast<size_t>(s.node[qq])]);
-      }
-      vb[i] = vel;
+      point_kinematics(points, p, s, Lb[i], vb[i]);
       const Mat3& Lp = Lb[i];
       Db[i] = SymmetricTensor::from_matrix(0.5 * (Lp + Lp.transpose()));
       power_before[i] = double_contraction(points.state[p].stress, Db[i]) * points.volume(p);

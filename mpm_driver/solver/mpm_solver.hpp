@@ -13,6 +13,7 @@
 #include "boundary_conditions.hpp"
 #include "material_points.hpp"
 #include "materials/material.hpp"
+#include "node_lanes.hpp"
 #include "pbms/grid/ddmp_gradient.hpp"
 #include "pbms/grid/regular_grid.hpp"
 #include "pbms/grid/shape_function.hpp"
@@ -101,19 +102,12 @@ class MpmSolver {
   [[nodiscard]] size_t material_count() const { return materials_.size(); }
   // Nodal fields after the last step, over patch().nodes (for grid output):
   // mass and the velocity of the momentum update (s-6).
-  [[nodiscard]] double nodal_mass(size_t local) const { return node_[local].mass; }
+  [[nodiscard]] double nodal_mass(size_t local) const { return sums_[local].lanes[sums::kMass]; }
   [[nodiscard]] const Vec3& nodal_velocity(size_t local) const { return velocity_[local]; }
   // Internal plus external nodal force of the last step, eV/Å.
   [[nodiscard]] const Vec3& nodal_force(size_t local) const { return node_force_[local]; }
 
  private:
-  // 7 doubles per node, summed across ranks in one exchange.
-  struct NodeSums {
-    double mass = 0.0;
-    Vec3 momentum{0.0, 0.0, 0.0};
-    Vec3 force{0.0, 0.0, 0.0};
-  };
-
   // The particle passes of one step, over a shape-function evaluator (the
   // generic virtual one, or an inlined one for a known style).
   template <class Eval>
@@ -125,16 +119,21 @@ class MpmSolver {
   // The stencil of point p (a reference or a value, by evaluator).
   template <class Eval>
   decltype(auto) locate(const Eval& eval, const MaterialPoints& points, size_t p) const;
-  void sum_shared(double* first, int components);
+  // Completes `components` lanes of the node sums from `first`.
+  void sum_shared(int first, int components);
   template <class Eval>
   void scatter(const Eval& eval, const MaterialPoints& points, const BoundaryConditions& bc,
-               bool momentum, bool force);
+               bool force);
   void nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const;
   void apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
                               bool is_velocity) const;
+  // Packs two nodal vector fields into kin_ for the point passes.
+  void pack_kinematics(const std::vector<Vec3>& first, const std::vector<Vec3>& second);
+  // From kin_ packed as (gradient field, carried field): the velocity
+  // gradient L at point p and the carried field interpolated there.
   template <class Stencil>
-  void velocity_gradient(const MaterialPoints& points, size_t p, const Stencil& s,
-                         const std::vector<Vec3>& v, const std::vector<Mat3>& G, Mat3& L) const;
+  void point_kinematics(const MaterialPoints& points, size_t p, const Stencil& s, Mat3& L,
+                        Vec3& carried) const;
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
   double update_deformation(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
   void update_point_stress(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
@@ -151,7 +150,11 @@ class MpmSolver {
   std::vector<std::unique_ptr<Material>> materials_;
   SolverOptions opt_;
   double mass_floor_ = 0.0;
-  std::vector<NodeSums> node_;
+  // Per node: mass, momentum, force (sums:: lanes), summed across ranks in
+  // one exchange.
+  std::vector<NodeLanes> sums_;
+  // Per node: two vector fields a point pass interpolates together.
+  std::vector<NodeLanes> kin_;
   std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
   std::vector<Vec3> reaction_;
   std::vector<std::vector<double>> rigid_;  // per point_velocities entry: weight of its points

@@ -6,20 +6,30 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <type_traits>
 
 #include "pbms/grid/shape_function.hpp"
+#include "pbms/simd/lanes8.hpp"
 
 namespace pbms::grid {
 
-// The stencil of the linear style with its node count fixed at compile time,
-// so that a solver's loops over it unroll (same fields as ShapeStencil).
+// The stencil of the linear style with its node count fixed at compile
+// time, so that a solver's loops over it unroll. Weights and gradient
+// components are kept per component across the eight corners (one SIMD
+// register each) instead of ShapeStencil's per-node triples; grad() gives
+// either layout's gradient of node q.
 struct LinearStencil {
   static constexpr int count = 8;
   std::array<std::int64_t, 8> node{};
-  std::array<double, 8> N{};
-  std::array<std::array<double, 3>, 8> dN{};
+  Lanes8 N{};
+  Lanes8 dNx{}, dNy{}, dNz{};
 };
+
+inline std::array<double, 3> grad(const LinearStencil& s, int q) {
+  return {s.dNx[q], s.dNy[q], s.dNz[q]};
+}
+inline const std::array<double, 3>& grad(const ShapeStencil& s, int q) {
+  return s.dN[static_cast<std::size_t>(q)];
+}
 
 class ShapeFunctionLinear final : public ShapeFunction {
  public:
@@ -36,38 +46,55 @@ class ShapeFunctionLinear final : public ShapeFunction {
           stride_y_(grid.nodes_per_axis()[0]),
           stride_z_(std::int64_t{grid.nodes_per_axis()[0]} * grid.nodes_per_axis()[1]) {
       for (auto& c : last_cell_) c -= 1;
+      for (int q = 0; q < 8; ++q) {
+        offset_[q] = (q & 1) + ((q >> 1) & 1) * stride_y_ + (q >> 2) * stride_z_;
+      }
+      for (int d = 0; d < 3; ++d) {
+        slope_[d] = kSign[d] * inv_h_;
+        origin4_[d] = origin_[d];
+        h4_[d] = h_;
+        inv_h4_[d] = inv_h_;
+      }
+      h4_[3] = inv_h4_[3] = 1.0;
     }
 
-    // x must lie in the grid (RegularGrid::contains); Stencil is
-    // LinearStencil or ShapeStencil.
-    template <class Stencil>
-    [[gnu::always_inline]] void operator()(const std::array<double, 3>& x, Stencil& out) const {
-      // Per axis: weights and slopes of the lower (0) and upper (1) node. The
-      // cell is RegularGrid::cell_of's (x >= origin, so truncation is floor);
-      // the clamp keeps round-off in the local coordinate from pushing N out
-      // of [0, 1].
-      double w[3][2];
+    // x must lie in the grid (RegularGrid::contains).
+    [[gnu::always_inline]] void operator()(const std::array<double, 3>& x,
+                                           LinearStencil& out) const {
+      // The cell is RegularGrid::cell_of's (x >= origin, so truncation is
+      // floor); the clamp keeps round-off in the local coordinate from
+      // pushing N out of [0, 1]. Per axis, the lower corner weighs 1 - xi and
+      // the upper xi; lane q is corner (q & 1, q >> 1 & 1, q >> 2).
+      // The three axes go through one vector division: the divider is the
+      // slowest unit this kernel uses.
+      using Lanes4 = double __attribute__((vector_size(32)));
+      const Lanes4 r = Lanes4{x[0], x[1], x[2], 0.0} - origin4_;
+      const Lanes4 cells = r / h4_;
+      const Lanes4 scaled = r * inv_h4_;
+      Lanes8 w[3];
       int cell[3];
       for (int d = 0; d < 3; ++d) {
-        const double r = x[d] - origin_[d];
-        cell[d] = std::clamp(static_cast<int>(r / h_), 0, last_cell_[d]);
-        const double xi = std::clamp(r * inv_h_ - cell[d], 0.0, 1.0);
-        w[d][0] = 1.0 - xi;
-        w[d][1] = xi;
+        cell[d] = std::clamp(static_cast<int>(cells[d]), 0, last_cell_[d]);
+        const double xi = std::clamp(scaled[d] - cell[d], 0.0, 1.0);
+        w[d] = kLower[d] + xi * kSign[d];  // 1 + xi * -1 is 1 - xi exactly
       }
-      const double s[2] = {-inv_h_, inv_h_};
       const std::int64_t base = cell[0] + stride_y_ * cell[1] + stride_z_ * cell[2];
-      if constexpr (!std::is_same_v<Stencil, LinearStencil>) out.count = 8;
-      for (int c = 0; c < 2; ++c) {
-        for (int b = 0; b < 2; ++b) {
-          for (int a = 0; a < 2; ++a) {
-            const int q = a + 2 * b + 4 * c;
-            out.node[q] = base + a + b * stride_y_ + c * stride_z_;
-            out.N[q] = w[0][a] * w[1][b] * w[2][c];
-            out.dN[q] = {s[a] * w[1][b] * w[2][c], w[0][a] * s[b] * w[2][c],
-                         w[0][a] * w[1][b] * s[c]};
-          }
-        }
+      for (int q = 0; q < 8; ++q) out.node[q] = base + offset_[q];
+      out.N = w[0] * w[1] * w[2];
+      out.dNx = slope_[0] * w[1] * w[2];
+      out.dNy = w[0] * slope_[1] * w[2];
+      out.dNz = w[0] * w[1] * slope_[2];
+    }
+
+    void operator()(const std::array<double, 3>& x, ShapeStencil& out) const {
+      LinearStencil s;
+      (*this)(x, s);
+      out.count = 8;
+      for (int q = 0; q < 8; ++q) {
+        const auto qq = static_cast<std::size_t>(q);
+        out.node[qq] = s.node[qq];
+        out.N[qq] = s.N[q];
+        out.dN[qq] = grad(s, q);
       }
     }
 
@@ -76,6 +103,14 @@ class ShapeFunctionLinear final : public ShapeFunction {
     double h_, inv_h_;
     std::array<int, 3> last_cell_;
     std::int64_t stride_y_, stride_z_;
+    std::array<std::int64_t, 8> offset_{};
+    Lanes8 slope_[3]{};  // d N / d x_d of each corner's axis-d factor
+    double __attribute__((vector_size(32))) origin4_{}, h4_{}, inv_h4_{};
+
+    static constexpr Lanes8 kLower[3] = {
+        {1, 0, 1, 0, 1, 0, 1, 0}, {1, 1, 0, 0, 1, 1, 0, 0}, {1, 1, 1, 1, 0, 0, 0, 0}};
+    static constexpr Lanes8 kSign[3] = {
+        {-1, 1, -1, 1, -1, 1, -1, 1}, {-1, -1, 1, 1, -1, -1, 1, 1}, {-1, -1, -1, -1, 1, 1, 1, 1}};
   };
 
   // Nodes come in the cell's corner order, x offset fastest: node a + 2b + 4c
