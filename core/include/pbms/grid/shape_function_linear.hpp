@@ -39,10 +39,7 @@ class ShapeFunctionLinear final : public ShapeFunction {
   class Kernel {
    public:
     explicit Kernel(const RegularGrid& grid)
-        : origin_(grid.origin()),
-          h_(grid.cell_size()),
-          inv_h_(1.0 / grid.cell_size()),
-          last_cell_(grid.cells()),
+        : last_cell_(grid.cells()),
           stride_y_(grid.nodes_per_axis()[0]),
           stride_z_(std::int64_t{grid.nodes_per_axis()[0]} * grid.nodes_per_axis()[1]) {
       for (auto& c : last_cell_) c -= 1;
@@ -50,10 +47,10 @@ class ShapeFunctionLinear final : public ShapeFunction {
         offset_[q] = (q & 1) + ((q >> 1) & 1) * stride_y_ + (q >> 2) * stride_z_;
       }
       for (int d = 0; d < 3; ++d) {
-        slope_[d] = kSign[d] * inv_h_;
-        origin4_[d] = origin_[d];
-        h4_[d] = h_;
-        inv_h4_[d] = inv_h_;
+        origin4_[d] = grid.origin()[static_cast<std::size_t>(d)];
+        h4_[d] = grid.cell_size();
+        inv_h4_[d] = 1.0 / grid.cell_size();
+        slope_[d] = kSign[d] * inv_h4_[d];
       }
       h4_[3] = inv_h4_[3] = 1.0;
     }
@@ -99,12 +96,11 @@ class ShapeFunctionLinear final : public ShapeFunction {
     }
 
    private:
-    std::array<double, 3> origin_;
-    double h_, inv_h_;
     std::array<int, 3> last_cell_;
     std::int64_t stride_y_, stride_z_;
     std::array<std::int64_t, 8> offset_{};
     Lanes8 slope_[3]{};  // d N / d x_d of each corner's axis-d factor
+    // Origin, h and 1/h per axis; lane 3 is padding (1, not 0, for h).
     double __attribute__((vector_size(32))) origin4_{}, h4_{}, inv_h4_{};
 
     static constexpr Lanes8 kLower[3] = {
