@@ -66,7 +66,7 @@ void add_to_row(std::vector<DualDomainOperator::Entry>& row, std::int64_t i, con
 
 DualDomainOperator::DualDomainOperator(const RegularGrid& grid, const ShapeFunction& shape,
                                        std::span<const std::array<double, 3>> positions,
-                                       DualDomainQuadrature quadrature)
+                                       DualDomainQuadrature quadrature, DualDomainRows rows_kind)
     : node_count_(grid.node_count()) {
   const GaussRule rule = gauss_rule(quadrature.gauss_points);
   const int ng = quadrature.gauss_points;
@@ -173,7 +173,7 @@ DualDomainOperator::DualDomainOperator(const RegularGrid& grid, const ShapeFunct
     auto& row = rows[s];
     std::sort(row.begin(), row.end(),
               [](const Entry& a, const Entry& b) { return a.node < b.node; });
-    const double inv_v = 1.0 / volume_[s];
+    const double inv_v = rows_kind == DualDomainRows::kAverage ? 1.0 / volume_[s] : 1.0;
     for (auto& e : row) {
       for (int d = 0; d < 3; ++d) e.d[d] *= inv_v;
       entries_.push_back(e);

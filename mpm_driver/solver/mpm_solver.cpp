@@ -80,13 +80,6 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape
       shape_(std::move(shape)),
       materials_(std::move(materials)),
       opt_(options) {
-  if (opt_.ddmp && (patch_.sum_shared || patch_.nodes != patch_.domain.node_box())) {
-    // The dual-domain operator needs nodal volumes and neighbouring nodal
-    // gradients across box faces, which the halo exchange does not carry.
-    throw Error(
-        "DDMP gradients need the whole, non-periodic grid on one rank: run the mpm_driver "
-        "with 1 rank, or use plain gradients");
-  }
   const auto n = static_cast<size_t>(local_.node_count());
   sums_.assign(n, NodeLanes{});
   kin_.assign(n, NodeLanes{});
@@ -218,19 +211,32 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
       }
     }
   }
-  if (!dual) return;
-  // Dual-domain part of the internal force: nodal stress moments spread
-  // with the operator's rows D_ji.
+}
+
+// Dual-domain part of the internal force, f_i -= sum_j (S_j / V_j) . M_ji,
+// after the node sums: S_j and V_j are completed across ranks first, then
+// each rank spreads the nodal average stress over its own cells' rows, and
+// those parts are summed in turn (see DualDomainRows).
+void MpmSolver::add_dual_force() {
+  if (patch_.sum_shared) patch_.sum_shared(S_.data()->data(), 6, 6);
+  dual_force_.assign(sums_.size(), {0.0, 0.0, 0.0});
   for (size_t j = 0; j < S_.size(); ++j) {
-    const auto& t = S_[j];
+    if (!(dual_volume_[j] > 0.0)) continue;
+    auto t = S_[j];
     if (t == std::array<double, 6>{0, 0, 0, 0, 0, 0}) continue;
+    for (auto& c : t) c /= dual_volume_[j];
     for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
-      auto& f = sums_[static_cast<size_t>(e.node)].lanes;
+      auto& f = dual_force_[static_cast<size_t>(e.node)];
       const auto& d = e.d;
-      f[sums::kForce] -= t[0] * d[0] + t[5] * d[1] + t[4] * d[2];
-      f[sums::kForce + 1] -= t[5] * d[0] + t[1] * d[1] + t[3] * d[2];
-      f[sums::kForce + 2] -= t[4] * d[0] + t[3] * d[1] + t[2] * d[2];
+      f[0] -= t[0] * d[0] + t[5] * d[1] + t[4] * d[2];
+      f[1] -= t[5] * d[0] + t[1] * d[1] + t[3] * d[2];
+      f[2] -= t[4] * d[0] + t[3] * d[1] + t[2] * d[2];
     }
+  }
+  if (patch_.sum_shared) patch_.sum_shared(dual_force_.data()->data(), 3, 3);
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    auto& f = sums_[i].lanes;
+    for (int a = 0; a < 3; ++a) f[sums::kForce + a] += dual_force_[i][static_cast<size_t>(a)];
   }
 }
 
@@ -263,7 +269,8 @@ void MpmSolver::nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>
 void MpmSolver::nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const {
   // Dual-domain nodal velocity gradient G_j = sum_i v_i (x) D_ji, later
   // interpolated to the points with N (seed Appendix 2's nodal central
-  // difference, in 3-D).
+  // difference, in 3-D): each rank's rows M_ji give its part, and the parts
+  // are summed before the division by V_j.
   G.assign(sums_.size(), Mat3::Zero());
   for (size_t j = 0; j < G.size(); ++j) {
     for (const auto& e : dual_->row(static_cast<int64_t>(j))) {
@@ -273,6 +280,11 @@ void MpmSolver::nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G)
           G[j](a, b) += vi[static_cast<size_t>(a)] * e.d[static_cast<size_t>(b)];
       }
     }
+  }
+  static_assert(sizeof(Mat3) == 9 * sizeof(double));
+  if (patch_.sum_shared) patch_.sum_shared(G.data()->data(), 9, 9);
+  for (size_t j = 0; j < G.size(); ++j) {
+    if (dual_volume_[j] > 0.0) G[j] /= dual_volume_[j];
   }
 }
 
@@ -392,8 +404,7 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
   double ref = opt_.reference_point_mass;
   if (ref <= 0.0 && n > 0) ref = *std::min_element(points.mass.begin(), points.mass.end());
   mass_floor_ = ref * opt_.small_mass_fraction;
-  if (opt_.ddmp && n > 0)
-    dual_ = std::make_unique<grid::DualDomainOperator>(local_, *shape_, points.x);
+  if (opt_.ddmp) build_dual(points);
   // The linear style runs an inlined fixed stencil; any other style goes
   // through its virtual evaluate(), with the same passes.
   if (dynamic_cast<const grid::ShapeFunctionLinear*>(shape_.get()) != nullptr) {
@@ -402,6 +413,17 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
     step_passes(GenericEval{*shape_, local_, {}}, points, bc, dt);
   }
   finish_positions(points);
+}
+
+void MpmSolver::build_dual(const MaterialPoints& points) {
+  // Built from this rank's points over its own cells, as integrals, so that
+  // the parts of V_j and of the rows at shared nodes add up across ranks.
+  dual_ = std::make_unique<grid::DualDomainOperator>(
+      local_, *shape_, points.x, grid::DualDomainQuadrature{}, grid::DualDomainRows::kIntegral);
+  dual_volume_.resize(sums_.size());
+  for (size_t j = 0; j < dual_volume_.size(); ++j)
+    dual_volume_[j] = dual_->nodal_volume(static_cast<int64_t>(j));
+  if (patch_.sum_shared) patch_.sum_shared(dual_volume_.data(), 1, 1);
 }
 
 template <class Eval>
@@ -416,6 +438,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   if (last) {
     scatter(eval, points, bc, true);  // s-1 to s-4
     sum_shared(sums::kMass, 7);
+    if (opt_.ddmp) add_dual_force();
     sum_rigid();
   } else {
     // Update-stress-first: the gradient of the mapped velocity updates the
@@ -435,6 +458,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     }
     scatter(eval, points, bc, true);
     sum_shared(sums::kMass, 7);
+    if (opt_.ddmp) add_dual_force();
     sum_rigid();
   }
 

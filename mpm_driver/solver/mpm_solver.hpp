@@ -135,6 +135,8 @@ class MpmSolver {
   void point_kinematics(const MaterialPoints& points, size_t p, const Stencil& s, Mat3& L,
                         Vec3& carried) const;
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
+  void build_dual(const MaterialPoints& points);
+  void add_dual_force();
   double update_deformation(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
   void update_point_stress(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
   void sum_rigid();
@@ -159,9 +161,14 @@ class MpmSolver {
   std::vector<Vec3> reaction_;
   std::vector<std::vector<double>> rigid_;  // per point_velocities entry: weight of its points
   std::vector<char> unique_node_;
-  std::vector<Mat3> G_;                   // DDMP nodal velocity gradients
-  std::vector<std::array<double, 6>> S_;  // DDMP nodal stress moments
+  // DDMP: this rank's operator (rows as integrals M_ji), the nodal volumes
+  // V_j summed over ranks, nodal velocity gradients, stress moments and the
+  // dual part of the internal force.
   std::unique_ptr<grid::DualDomainOperator> dual_;
+  std::vector<double> dual_volume_;
+  std::vector<Mat3> G_;
+  std::vector<std::array<double, 6>> S_;
+  std::vector<Vec3> dual_force_;
 };
 
 }  // namespace pbms::mpm

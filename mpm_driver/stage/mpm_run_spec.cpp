@@ -167,7 +167,7 @@ config::StageKindSpec MpmRunStage::spec() {
           .def(std::string("linear")),
       Param::choice("gradient", {"plain", "ddmp"},
                     "plain: gradients of the shape functions; ddmp: dual-domain (Zhang, Ma & "
-                    "Giguere 2011), 1 rank only")
+                    "Giguere 2011), on any number of ranks")
           .def(std::string("plain")),
       Param::choice("ddmp_blend", {"none", "face_vanishing"},
                     "With ddmp: pure dual-domain gradients, or blended with the plain ones by "

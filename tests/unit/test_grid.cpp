@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <random>
 #include <span>
 #include <string>
@@ -450,6 +451,47 @@ TEST(Ddmp, OneDimensionReducesToNodalCentralDifferences) {
     if (i > first && i < last) expected = area * (avg[i + 1] - avg[i - 1]) / 2;
     EXPECT_NEAR(bar_force(g, f, i), expected, 1e-9) << "node " << i;
   }
+}
+
+// A decomposed run builds one operator per rank from its own points. Kept
+// as integrals, the parts add up to the whole grid's operator: summed rows
+// over summed volumes give D_ji of one operator over all points.
+TEST(Ddmp, IntegralRowsOfTwoPartsAddUpToTheWholeOperator) {
+  const RegularGrid g({0.3, -0.7, 1.1}, 0.5, {8, 7, 6});
+  const ShapeFunctionLinear sf;
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> all, left, right;
+  for (int p = 0; p < 300; ++p) {
+    Vec3 x{};
+    for (int d = 0; d < 3; ++d) x[d] = g.origin()[d] + g.cell_size() * (1.0 + 5.0 * u(rng));
+    all.push_back(x);
+    // Split on a cell face, as a grid partition does.
+    (x[0] < g.origin()[0] + 3 * g.cell_size() ? left : right).push_back(x);
+  }
+  ASSERT_FALSE(left.empty());
+  ASSERT_FALSE(right.empty());
+  const DualDomainOperator whole(g, sf, all);
+  const DualDomainOperator a(g, sf, left, {}, DualDomainRows::kIntegral);
+  const DualDomainOperator b(g, sf, right, {}, DualDomainRows::kIntegral);
+  int shared = 0;
+  for (std::int64_t j = 0; j < g.node_count(); ++j) {
+    const double v = a.nodal_volume(j) + b.nodal_volume(j);
+    EXPECT_NEAR(v, whole.nodal_volume(j), 1e-15) << "node " << j;
+    if (a.nodal_volume(j) > 0.0 && b.nodal_volume(j) > 0.0) ++shared;
+    std::map<std::int64_t, Vec3> sum;
+    for (const auto* op : {&a, &b}) {
+      for (const auto& e : op->row(j)) {
+        for (int d = 0; d < 3; ++d) sum[e.node][d] += e.d[d];
+      }
+    }
+    const auto row = whole.row(j);
+    ASSERT_EQ(row.size(), sum.size()) << "node " << j;
+    for (const auto& e : row) {
+      for (int d = 0; d < 3; ++d) ASSERT_NEAR(sum[e.node][d] / v, e.d[d], 1e-12);
+    }
+  }
+  EXPECT_GT(shared, 10);  // the test reaches the nodes on the cut
 }
 
 TEST(Ddmp, LinearlyCompleteForAnyBlendAndArrangement) {

@@ -87,6 +87,16 @@ struct DualDomainQuadrature {
   int subcells = 1;      // each cell split into subcells^3 equal parts
 };
 
+// What row(j) holds. kAverage: D_ji, ready to use. kIntegral: the integral
+// of N_j grad N_i over Omega without the 1 / V_j. Integrals add over cells,
+// so a rank that builds its operator from its own points (its part of
+// Omega) holds a part of each row and of V_j at the nodes it shares; once
+// the parts are summed across ranks, a quantity divided by the summed V_j is
+// that of the whole grid. This is how a decomposed solver uses DDMP without
+// ghost nodes: sum_i v_i (x) D_ji = (sum_i v_i (x) M_ji) / V_j and
+// sum_j S_j . D_ji = sum_j (S_j / V_j) . M_ji, each sum over M local.
+enum class DualDomainRows { kAverage, kIntegral };
+
 // The nodal operator D_ji and volumes V_j for one material region Omega.
 class DualDomainOperator {
  public:
@@ -99,14 +109,16 @@ class DualDomainOperator {
   // a position is outside the grid or the quadrature is out of range.
   DualDomainOperator(const RegularGrid& grid, const ShapeFunction& shape,
                      std::span<const std::array<double, 3>> positions,
-                     DualDomainQuadrature quadrature = {});
+                     DualDomainQuadrature quadrature = {},
+                     DualDomainRows rows = DualDomainRows::kAverage);
 
   [[nodiscard]] std::int64_t node_count() const { return node_count_; }
   // Sorted linear cell indices of Omega.
   [[nodiscard]] const std::vector<std::int64_t>& occupied_cells() const { return cells_; }
   // V_j; 0 for a node that does not touch Omega.
   [[nodiscard]] double nodal_volume(std::int64_t node) const;
-  // D_ji for all i, sorted by i; empty for a node with V_j = 0.
+  // D_ji (or M_ji, see DualDomainRows) for all i, sorted by i; empty for a
+  // node with V_j = 0.
   [[nodiscard]] std::span<const Entry> row(std::int64_t node) const;
 
  private:
