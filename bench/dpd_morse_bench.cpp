@@ -3,9 +3,10 @@
 // adds to it.
 //
 // Setup: 32,000 mesoparticles (periodic fcc, 20 × 20 × 20 cells,
-// a = 7.23 Å, 508.37 g/mol), the Morse fit of docs/dpd-morse-fit.md
-// (shift yes, r_c = 10 Å), skin 1 Å, dt = 0.01 ps, 1,000 steps, velocities
-// Maxwell–Boltzmann at 298 K. Runs
+// a = 7.23 Å, 508.37 g/mol), the Morse fit of docs/dpd-morse-fit.md as
+// configs/potentials/cu_cg_morse.yaml holds it (shift yes, r_c = 10 Å),
+// skin 1 Å, dt = 0.01 ps, 1,000 steps, velocities Maxwell–Boltzmann at
+// 298 K. Runs
 //   - NVE (DpdScheme::kNve): the script's BENCH dpd_particle_steps_per_s,
 //     set against lmp pair_style morse and morse/opt on the same state
 //     (target: PBMS ≥ 1.2 × the faster LAMMPS run);
@@ -24,23 +25,21 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <memory>
 #include <string>
 
+#include "cu_cg_morse.hpp"
 #include "integrators/dpd_integrator.hpp"
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/kinetic_sums.hpp"
 #include "kernels/maxwell_boltzmann_velocities.hpp"
-#include "kernels/morse.hpp"
 
 using namespace pbms::dpd;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr double kD0 = 2.70736;      // eV
-constexpr double kAlpha = 0.740826;  // 1/Å
-constexpr double kR0 = 5.472809;     // Å
-constexpr double kCutoff = 10.0;     // Å
+constexpr double kDpdCutoff = 10.0;  // Å, of the thermostat's pair forces
 constexpr double kSkin = 1.0;        // Å
 constexpr double kLattice = 7.23;    // Å
 constexpr double kMass = 508.37;     // g/mol
@@ -73,13 +72,13 @@ struct RunResult {
 
 RunResult run(const FccCrystal& start, DpdScheme scheme, PairNoiseDistribution noise) {
   FccCrystal crystal = start;
-  Morse morse(kD0, kAlpha, kR0, kCutoff, true);
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   DpdIntegratorSettings settings;
   settings.scheme = scheme;
   settings.dt = kDt;
   settings.skin = kSkin;
-  settings.friction = {kGamma, kCutoff, kTemperature, kSeed, noise};
-  DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
+  settings.friction = {kGamma, kDpdCutoff, kTemperature, kSeed, noise};
+  DpdIntegrator integrator(crystal.particles, crystal.box, *morse, settings);
   RunResult result;
   result.initial_potential = integrator.potential().energy;
   result.initial_kinetic = kinetic_energy(crystal.particles);
@@ -94,7 +93,8 @@ RunResult run(const FccCrystal& start, DpdScheme scheme, PairNoiseDistribution n
   return result;
 }
 
-bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
+bool write_lammps_files(const std::string& dir, const FccCrystal& crystal,
+                        const CuCgMorseParameters& morse) {
   const DpdParticles& p = crystal.particles;
   std::FILE* data = std::fopen((dir + "/data.lmp").c_str(), "w");
   if (data == nullptr) return false;
@@ -126,7 +126,7 @@ bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
                "read_data data.lmp\n"
                "pair_style ${pair} %.17g\n"
                "pair_coeff 1 1 %.17g %.17g %.17g\n"
-               "pair_modify shift yes\n"
+               "pair_modify shift %s\n"
                "neighbor %.17g bin\n"
                "neigh_modify every 1 delay 0 check yes\n"
                "timestep %.17g\n"
@@ -135,7 +135,8 @@ bool write_lammps_files(const std::string& dir, const FccCrystal& crystal) {
                "thermo_modify format float %%.15g\n"
                "thermo %d\n"
                "run %d\n",
-               kCutoff, kD0, kAlpha, kR0, kSkin, kDt, kSteps, kSteps);
+               morse.cutoff, morse.d0, morse.alpha, morse.r0, morse.shift ? "yes" : "no", kSkin,
+               kDt, kSteps, kSteps);
   std::fclose(in);
   return true;
 }
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
   FccCrystal crystal = fcc_crystal(kCells, kCells, kCells, kLattice, kMass);
   assign_maxwell_boltzmann_velocities(crystal.particles, kTemperature, kSeed);
   if (scheme.empty()) {
-    if (write_lammps_files(argv[1], crystal)) return 0;
+    if (write_lammps_files(argv[1], crystal, cu_cg_morse_parameters())) return 0;
     std::fprintf(stderr, "dpd_morse_bench: cannot write into %s\n", argv[1]);
     return 1;
   }

@@ -14,15 +14,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <vector>
 
+#include "cu_cg_morse.hpp"
 #include "integrators/berendsen_thermostat.hpp"
 #include "integrators/dpd_integrator.hpp"
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/kinetic_sums.hpp"
 #include "kernels/maxwell_boltzmann_velocities.hpp"
-#include "kernels/morse.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/units.hpp"
@@ -41,10 +42,6 @@ constexpr double kMesoparticleHeatCapacity = 21.0 * kBoltzmann;  // eV/K
 // Strong enough that the thermostat relaxes the crystal in a few ps (the
 // seed's 0.2 g/mol/ps takes ~1 ns, which is why it equilibrates with Berendsen).
 constexpr double kTestGamma = 500.0;  // g/mol/ps
-
-Morse copper_morse() {
-  return Morse(2.70736, 0.740826, 5.472809, 10.0, true);
-}
 
 // The crystal at rest on its lattice with Maxwell–Boltzmann velocities at
 // twice the target: equipartition with the harmonic potential energy then
@@ -121,10 +118,10 @@ Conservation conservation(const std::vector<double>& time, const std::vector<dou
 
 Conservation run_nve(int cells, int steps, double dt) {
   FccCrystal crystal = thermal_crystal(cells, 2.0 * kRoomTemperature);
-  Morse morse = copper_morse();
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   DpdIntegratorSettings settings;
   settings.dt = dt;
-  DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
+  DpdIntegrator integrator(crystal.particles, crystal.box, *morse, settings);
   const double k0 = kinetic_energy(crystal.particles);
   const double e0 = k0 + integrator.potential().energy;
   std::vector<double> time, energy;
@@ -162,12 +159,12 @@ struct ThermostatRun {
 ThermostatRun run_thermostat(DpdScheme scheme, int cells, double equilibration_ps,
                              double production_ps, std::uint64_t seed) {
   FccCrystal crystal = thermal_crystal(cells, kRoomTemperature);
-  Morse morse = copper_morse();
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   DpdIntegratorSettings settings;
   settings.scheme = scheme;
   settings.dt = 0.01;
   settings.friction = {kTestGamma, 10.0, kRoomTemperature, seed};
-  DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
+  DpdIntegrator integrator(crystal.particles, crystal.box, *morse, settings);
   const int equilibration = static_cast<int>(std::lround(equilibration_ps / settings.dt));
   const int production = static_cast<int>(std::lround(production_ps / settings.dt));
   for (int s = 0; s < equilibration; ++s) integrator.step();
@@ -194,13 +191,13 @@ Conservation run_dpde(int cells, int steps, double dt) {
   FccCrystal crystal = thermal_crystal(cells, 2.0 * kRoomTemperature);
   crystal.particles.internal_energy.assign(crystal.particles.size(),
                                            kMesoparticleHeatCapacity * 1.5 * kRoomTemperature);
-  Morse morse = copper_morse();
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   DpdIntegratorSettings settings;
   settings.scheme = DpdScheme::kShardlowDpde;
   settings.dt = dt;
   settings.friction = {kTestGamma, 10.0, 0.0, 77};
   settings.heat_capacity = kMesoparticleHeatCapacity;
-  DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
+  DpdIntegrator integrator(crystal.particles, crystal.box, *morse, settings);
   const double u0 = internal_energy_sum(crystal.particles);
   const double thermal0 = kinetic_energy(crystal.particles) + u0;
   const double e0 = thermal0 + integrator.potential().energy;
@@ -335,9 +332,9 @@ TEST(DISABLED_DpdIntegratorsLong, DpdThermostatHolds298KAndShardlowAgreesWithVel
 TEST(DpdIntegrators, BerendsenBringsTheCrystalTo298K) {
   const auto start = std::chrono::steady_clock::now();
   FccCrystal crystal = thermal_crystal(4, kRoomTemperature);
-  Morse morse = copper_morse();
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   DpdIntegratorSettings settings;  // NVE + Berendsen, as the seed equilibrates
-  DpdIntegrator integrator(crystal.particles, crystal.box, morse, settings);
+  DpdIntegrator integrator(crystal.particles, crystal.box, *morse, settings);
   const double tau = 0.5;  // ps
   std::vector<double> temperature;
   for (int s = 0; s < 2000; ++s) {
@@ -357,15 +354,15 @@ TEST(DpdIntegrators, BerendsenBringsTheCrystalTo298K) {
 
 TEST(DpdIntegrators, RefusesMeaninglessSettings) {
   FccCrystal crystal = thermal_crystal(4, kRoomTemperature);
-  Morse morse = copper_morse();
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   DpdIntegratorSettings settings;
   settings.dt = 0.0;
-  EXPECT_THROW(DpdIntegrator(crystal.particles, crystal.box, morse, settings), pbms::Error);
+  EXPECT_THROW(DpdIntegrator(crystal.particles, crystal.box, *morse, settings), pbms::Error);
   settings.dt = 0.01;
   settings.scheme = DpdScheme::kShardlowDpde;
   settings.friction = {1.0, 10.0, 0.0, 1};
-  EXPECT_THROW(DpdIntegrator(crystal.particles, crystal.box, morse, settings), pbms::Error);
+  EXPECT_THROW(DpdIntegrator(crystal.particles, crystal.box, *morse, settings), pbms::Error);
   settings.heat_capacity = kMesoparticleHeatCapacity;  // but every u_i is still zero
-  DpdIntegrator dpde(crystal.particles, crystal.box, morse, settings);
+  DpdIntegrator dpde(crystal.particles, crystal.box, *morse, settings);
   EXPECT_THROW(dpde.step(), pbms::Error);
 }

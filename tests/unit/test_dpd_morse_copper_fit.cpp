@@ -1,27 +1,25 @@
 // The hand-fitted Morse potential of the 8-atom copper mesoparticle
-// (docs/dpd-morse-fit.md), checked with the real kernels on static crystals:
-// equilibrium lattice constant, bulk modulus and cubic elastic constants.
+// (docs/dpd-morse-fit.md, configs/potentials/cu_cg_morse.yaml), checked with
+// the real kernels on static crystals: equilibrium lattice constant, bulk
+// modulus and cubic elastic constants.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 
+#include "cu_cg_morse.hpp"
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/half_neighbour_list.hpp"
-#include "kernels/morse.hpp"
 #include "pbms/units.hpp"
 
 using namespace pbms::dpd;
 
 namespace {
 
-constexpr double kD0 = 2.70736;      // eV
-constexpr double kAlpha = 0.740826;  // 1/Å
-constexpr double kR0 = 5.472809;     // Å
-constexpr double kCutoff = 10.0;     // Å
-constexpr double kLattice = 7.23;    // Å
-constexpr double kMass = 508.37;     // g/mol
+constexpr double kLattice = 7.23;  // Å
+constexpr double kMass = 508.37;   // g/mol
 constexpr double kGpaPerEvPerA3 = pbms::units::kBarPerEvPerA3 / pbms::units::kBarPerGPa;
 
 // Potential energy (eV) of a crystal after the homogeneous strain
@@ -32,10 +30,10 @@ double strained_energy(const FccCrystal& reference, const Vec3& strain) {
     crystal.box.hi[a] *= 1.0 + strain[a];
     for (auto& x : crystal.particles.x) x[a] *= 1.0 + strain[a];
   }
-  HalfNeighbourList list(kCutoff, 0.5);
+  const std::unique_ptr<PairStyle> morse = cu_cg_morse();
+  HalfNeighbourList list(morse->cutoff(), 0.5);
   list.build(crystal.particles, crystal.box);
-  Morse morse(kD0, kAlpha, kR0, kCutoff, true);
-  return morse.compute(crystal.particles, list, Tally::kEnergyAndVirial).energy;
+  return morse->compute(crystal.particles, list, Tally::kEnergyAndVirial).energy;
 }
 
 // d²W/dε² (eV/Å³) of the strain energy density along the given strain

@@ -1,10 +1,11 @@
 // The morse pair style against LAMMPS itself (Debian's lmp, pair_style
 // morse), not against a formula of ours: energy, forces and virial of a
 // random 500-particle configuration with the copper mesoparticle parameters
-// (docs/dpd-morse-fit.md) must agree to 1e-10 relative, unshifted and with
-// pair_modify shift yes, for a periodic box, a free cluster and a slab
-// (periodic in x and y only). 1e-10 leaves room for summation order and
-// branch_free_exp (2 ulp), and none for a wrong term or a missed image.
+// (docs/dpd-morse-fit.md, configs/potentials/cu_cg_morse.yaml) must agree
+// to 1e-10 relative, unshifted and with pair_modify shift yes, for a
+// periodic box, a free cluster and a slab (periodic in x and y only). 1e-10
+// leaves room for summation order and branch_free_exp (2 ulp), and none for
+// a wrong term or a missed image.
 //
 // Skipped when lmp is not on PATH (it is part of PBMS's Debian packages).
 #include <gtest/gtest.h>
@@ -24,19 +25,16 @@
 #include <string>
 #include <vector>
 
+#include "cu_cg_morse.hpp"
 #include "kernels/half_neighbour_list.hpp"
-#include "kernels/pair_style_registry.hpp"
+#include "stage/dpd_model.hpp"
 
 using namespace pbms::dpd;
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kD0 = 2.70736;      // eV
-constexpr double kAlpha = 0.740826;  // 1/Å
-constexpr double kR0 = 5.472809;     // Å
-constexpr double kCutoff = 10.0;     // Å
-constexpr double kMass = 508.37;     // g/mol
+constexpr double kMass = 508.37;  // g/mol
 constexpr int kCount = 500;
 // Closer pairs than this would dominate the force scale and hide the error
 // of the ordinary pairs in max |f|; 4 Å is 0.7 r0.
@@ -143,15 +141,15 @@ void write_data_file(const fs::path& path, const DpdParticles& p, const Orthogon
 // Two runs of 0 steps, unshifted then shifted; each prints E and the pair
 // virial (as pressure, the only way LAMMPS reports it) with 17 digits and
 // dumps the forces.
-void write_input(const fs::path& path, const Geometry& geometry) {
+void write_input(const fs::path& path, const Geometry& geometry, const CuCgMorseParameters& morse) {
   std::ofstream in(path);
   in << "units metal\natom_style atomic\n";
   in << "boundary";
   for (bool p : geometry.periodic) in << (p ? " p" : " f");
   in << "\nread_data data.lmp\n";
-  in << "pair_style morse " << kCutoff << "\n";
-  char coeff[128];
-  std::snprintf(coeff, sizeof coeff, "pair_coeff 1 1 %.17g %.17g %.17g\n", kD0, kAlpha, kR0);
+  char coeff[160];
+  std::snprintf(coeff, sizeof coeff, "pair_style morse %.17g\npair_coeff 1 1 %.17g %.17g %.17g\n",
+                morse.cutoff, morse.d0, morse.alpha, morse.r0);
   in << coeff;
   in << "neighbor 1.0 bin\n";
   // Listed in thermo so that LAMMPS tallies the virial on step 0.
@@ -203,9 +201,13 @@ TEST_P(MorseVsLmp, EnergyForcesAndVirialAgreeTo1e10) {
   box.hi = {36.0, 40.0, 44.0};
   box.periodic = geometry.periodic;
   const DpdParticles initial = random_configuration(box);
+  const CuCgMorseParameters parameters = cu_cg_morse_parameters();
+  // The minimum image is the only image in reach only while 2 r_c fits the box.
+  ASSERT_LE(2.0 * parameters.cutoff, std::min({box.length(0), box.length(1), box.length(2)}))
+      << "the cutoff in " << kCuCgMorseFile << " is too long for the test box";
 
   write_data_file(dir_ / "data.lmp", initial, box);
-  write_input(dir_ / "in.lmp", geometry);
+  write_input(dir_ / "in.lmp", geometry, parameters);
   const std::string command = "cd '" + dir_.string() +
                               "' && lmp -in in.lmp -log none -nocite -screen screen.txt"
                               " >/dev/null 2>&1";
@@ -215,15 +217,12 @@ TEST_P(MorseVsLmp, EnergyForcesAndVirialAgreeTo1e10) {
     SCOPED_TRACE(shift ? "pair_modify shift yes" : "no shift");
     const Reference ref = read_reference(dir_, shift ? "shift" : "noshift");
 
-    PairStyleParameters params;
-    params.numbers = {{"d0", kD0},
-                      {"alpha", kAlpha},
-                      {"r0", kR0},
-                      {"cutoff", kCutoff},
-                      {"shift", shift ? 1.0 : 0.0}};
-    const std::unique_ptr<PairStyle> morse = PairStyleRegistry::create("morse", params);
+    // Both settings, whatever the file's `shift`: each must match LAMMPS.
+    YAML::Node potential = cu_cg_morse_yaml();
+    potential["shift"] = shift;
+    const std::unique_ptr<PairStyle> morse = pair_style_from_yaml(potential);
     DpdParticles p = initial;
-    HalfNeighbourList list(kCutoff, 1.0);
+    HalfNeighbourList list(morse->cutoff(), 1.0);
     list.build(p, box);
     p.zero_forces();
     const PairResult result = morse->compute(p, list, Tally::kEnergyAndVirial);
