@@ -19,7 +19,7 @@ using units::Dimension;
 
 namespace {
 
-std::vector<Param> crystal_params() {
+std::vector<Param> crystal_params(int default_sampling_steps) {
   return {
       Param::identifier("material", "A dpd_mesoparticle material").require().material(),
       Param::real("temperature", Dimension::kTemperature,
@@ -41,7 +41,9 @@ std::vector<Param> crystal_params() {
       Param::integer("equilibration_steps", "Steps before sampling, per state")
           .def(200)
           .at_least(0),
-      Param::integer("sampling_steps", "Steps sampled, per state").def(2000).at_least(10),
+      Param::integer("sampling_steps", "Steps sampled, per state")
+          .def(default_sampling_steps)
+          .at_least(10),
       Param::boolean("zero_pressure",
                      "Use the lattice constant of zero pressure at `temperature` instead of the "
                      "material's")
@@ -101,7 +103,7 @@ config::StageKindSpec DpdElasticStage::spec() {
       "C11, C12, C44 of the periodic DPD fcc crystal, static or at a temperature, and the "
       "wave speeds they give";
   s.material_kinds = {"dpd_mesoparticle"};
-  s.params = crystal_params();
+  s.params = crystal_params(kElasticSamplingSteps);
   s.outputs = {
       {"c11", OutputSpec::Shape::kScalar, "GPa", "C11"},
       {"c12", OutputSpec::Shape::kScalar, "GPa", "C12"},
@@ -156,7 +158,7 @@ config::StageKindSpec DpdIsothermStage::spec() {
       "Pressure against V/V0 of the periodic DPD crystal at a temperature, over a ladder of "
       "volume ratios or pressures";
   s.material_kinds = {"dpd_mesoparticle"};
-  s.params = crystal_params();
+  s.params = crystal_params(ThermalSettings{}.sampling_steps);
   s.params.push_back(Param::real_list("volume_ratios", Dimension::kNone,
                                       "V/V0 of each state (V0: the zero-pressure crystal)")
                          .length(1, 100));

@@ -5,7 +5,7 @@
 //
 // The static checks compare with independent finite differences of the
 // energy, computed here on crystals built here. The DpdProperties tests take
-// ~4 s together; DISABLED_DpdPropertiesLong (~25 s) checks the claims behind
+// ~4 s together; DISABLED_DpdPropertiesLong (~40 s) checks the claims behind
 // the thermal defaults: reported errors against the scatter over seeds, and
 // 3 cells against 5.
 #include <gtest/gtest.h>
@@ -288,12 +288,13 @@ TEST(DpdProperties, InvalidSettingsAreRefused) {
   EXPECT_THROW(isotherm_point(*morse, crystal, hot, 1.0), pbms::Error);
 }
 
-// ~25 s: the claims behind the thermal defaults. Run with
+// ~40 s: the claims behind the thermal defaults. Run with
 // --gtest_also_run_disabled_tests --gtest_filter='DISABLED_DpdPropertiesLong.*'.
 TEST(DISABLED_DpdPropertiesLong, ErrorsMatchSeedScatterAndThreeCellsSuffice) {
   const std::unique_ptr<PairStyle> morse = cu_cg_morse();
   const CrystalSpec crystal{kLattice, 0, kMass};
   ThermalSettings hot = room_temperature();
+  hot.sampling_steps = kElasticSamplingSteps;  // what dpd_elastic samples by default
   constexpr int kSeeds = 10;
   std::vector<double> c11, c44, reported_c11, reported_c44;
   for (int s = 0; s < kSeeds; ++s) {
