@@ -15,10 +15,6 @@ namespace pbms::dpd {
 
 namespace {
 
-bool is_shardlow(DpdScheme s) {
-  return s == DpdScheme::kShardlow || s == DpdScheme::kShardlowDpde;
-}
-
 void allreduce_sum(MPI_Comm comm, double* data, int n) {
   mpi::check(MPI_Allreduce(MPI_IN_PLACE, data, n, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
 }
@@ -33,10 +29,9 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
       ghosts_(domain_, interaction_cutoff(*pair_, settings) + settings.skin),
       list_(interaction_cutoff(*pair_, settings), settings.skin),
       step_(settings.first_step) {
-  if (is_shardlow(settings.scheme) && domain_.size() > 1) {
-    throw Error(
-        "DPD engine: the Shardlow schemes sweep pairs in a sequence that a decomposition would "
-        "change; run them on one rank, or use the velocity_verlet scheme on several");
+  if (is_shardlow(settings_.scheme)) {
+    sweep_order_ =
+        std::make_unique<ShardlowPairOrder>(box, settings_.friction.cutoff, settings_.skin);
   }
   if (settings_.scheme != DpdScheme::kNve) check_pair_noise_ids(all);
   total_ = static_cast<std::int64_t>(all.size());
@@ -90,6 +85,10 @@ void DpdEngine::rebuild() {
   owned_ = particles_.size();
   ghosts_.build(particles_, owned_);
   list_.build(particles_, domain_.list_box(), owned_);
+  if (sweep_order_) {
+    sweep_order_->build(particles_, domain_.list_box(),
+                        [this](const Vec3& centre) { return domain_.owns(centre); });
+  }
 }
 
 void DpdEngine::refresh_ghosts() {
@@ -147,7 +146,7 @@ PairResult DpdEngine::compute_forces(Tally tally) {
 
 void DpdEngine::step() {
   const double dt = settings_.dt;
-  splitting_sweep(particles_, list_, settings_, step_);
+  if (sweep_order_) sweep_pairs();
   half_kick();
   for (std::size_t i = 0; i < owned_; ++i) {
     for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];
@@ -156,6 +155,27 @@ void DpdEngine::step() {
   refresh_ghosts();
   compute_forces(Tally::kForcesOnly);
   half_kick();
+}
+
+void DpdEngine::sweep_pairs() {
+  const bool dpde = settings_.scheme == DpdScheme::kShardlowDpde;
+  const bool decomposed = domain_.size() > 1;
+  if (decomposed) {
+    // The last half kick changed the owned velocities only.
+    ghosts_.forward(particles_);
+    if (dpde) ghosts_.forward(particles_.internal_energy);
+  }
+  std::function<void(int)> hand_back;
+  if (decomposed) {
+    hand_back = [&](int colour) {
+      touched_.assign(particles_.size(), 0);
+      for (const ShardlowPair& p : sweep_order_->colour(colour)) touched_[p.i] = touched_[p.j] = 1;
+      ghosts_.reverse(particles_, touched_, dpde);
+      ghosts_.forward(particles_);
+      if (dpde) ghosts_.forward(particles_.internal_energy);
+    };
+  }
+  splitting_sweep(particles_, *sweep_order_, settings_, step_, hand_back);
 }
 
 void DpdEngine::berendsen(double temperature, double tau) {

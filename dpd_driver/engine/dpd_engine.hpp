@@ -10,8 +10,9 @@
 // images come from the neighbour list's shifts, as in DpdIntegrator.
 //
 // The Shardlow schemes sweep pairs in sequence, so their result depends on
-// the sweep order; they run on one rank only and the engine refuses them
-// on more.
+// the sweep order: they take it from ShardlowPairOrder, which does not
+// depend on the decomposition, and between its colours hand the velocities
+// (and internal energies) their ghosts got back to the owners.
 #pragma once
 
 #include <mpi.h>
@@ -49,8 +50,7 @@ class DpdEngine {
   // Every rank passes the same box, style, settings and the same full set
   // of particles; each keeps the ones its sub-box owns. Builds ghosts and
   // list and computes the initial forces. Throws pbms::Error as
-  // DpdIntegrator does, when the box cannot be split over the ranks, and for
-  // a Shardlow scheme on more than one rank.
+  // DpdIntegrator does, and when the box cannot be split over the ranks.
   DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<PairStyle> pair,
             const DpdIntegratorSettings& settings, DpdParticles all);
 
@@ -91,6 +91,7 @@ class DpdEngine {
   void rebuild();
   PairResult compute_forces(Tally tally);
   void half_kick();
+  void sweep_pairs();
 
   DomainDecomposition domain_;
   std::unique_ptr<PairStyle> pair_;
@@ -106,6 +107,8 @@ class DpdEngine {
   std::vector<double> body_mass_;      // g/mol
   std::vector<double> body_force_;     // scratch, 3 per body
   std::vector<Vec3> scratch_forces_;
+  std::unique_ptr<ShardlowPairOrder> sweep_order_;  // Shardlow schemes only
+  std::vector<char> touched_;                       // per colour: particles it updated
 };
 
 }  // namespace pbms::dpd

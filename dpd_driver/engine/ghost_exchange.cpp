@@ -125,4 +125,33 @@ void GhostExchange::forward(std::vector<double>& values) const {
   }
 }
 
+void GhostExchange::reverse(DpdParticles& particles, std::vector<char>& touched,
+                            bool internal_energy) const {
+  const std::size_t width = internal_energy ? 5 : 4;  // mark, v, u
+  for (auto it = swaps_.rbegin(); it != swaps_.rend(); ++it) {
+    const Swap& s = *it;
+    send_buffer_.clear();
+    for (std::size_t k = 0; k < s.receive_count; ++k) {
+      const std::size_t g = s.receive_first + k;
+      const Vec3& v = particles.v[g];
+      send_buffer_.insert(send_buffer_.end(), {touched[g] ? 1.0 : 0.0, v[0], v[1], v[2]});
+      if (internal_energy) send_buffer_.push_back(particles.internal_energy[g]);
+    }
+    receive_buffer_.resize(width * s.send.size());
+    mpi::check(MPI_Sendrecv(send_buffer_.data(), static_cast<int>(send_buffer_.size()), MPI_DOUBLE,
+                            s.receive_from, 400, receive_buffer_.data(),
+                            static_cast<int>(receive_buffer_.size()), MPI_DOUBLE, s.send_to, 400,
+                            domain_.comm(), MPI_STATUS_IGNORE),
+               "MPI_Sendrecv (ghost velocities back)");
+    for (std::size_t k = 0; k < s.send.size(); ++k) {
+      const double* r = &receive_buffer_[width * k];
+      if (r[0] == 0.0) continue;
+      const std::size_t i = s.send[k];
+      particles.v[i] = {r[1], r[2], r[3]};
+      if (internal_energy) particles.internal_energy[i] = r[4];
+      touched[i] = 1;
+    }
+  }
+}
+
 }  // namespace pbms::dpd

@@ -25,6 +25,11 @@ class GhostExchange {
   void forward(DpdParticles& particles) const;
   // Refreshes a per-particle array on the ghosts (owned values first).
   void forward(std::vector<double>& values) const;
+  // The other way: the velocities (and, with internal_energy, the internal
+  // energies) of the ghosts marked in `touched` replace their owners' values.
+  // At most one copy of a particle may be marked. Marks the copies it sets
+  // on the way back (a corner ghost passes through an edge ghost).
+  void reverse(DpdParticles& particles, std::vector<char>& touched, bool internal_energy) const;
 
   [[nodiscard]] std::size_t ghost_count() const { return ghosts_; }
 

@@ -37,8 +37,17 @@ DpdIntegrator::DpdIntegrator(DpdParticles& particles, const OrthogonalBox& box, 
       list_(interaction_cutoff(pair, settings), settings.skin),
       step_(settings.first_step) {
   if (settings_.scheme != DpdScheme::kNve) check_pair_noise_ids(particles_);
-  list_.build(particles_, box_);
+  if (is_shardlow(settings_.scheme)) {
+    sweep_order_ =
+        std::make_unique<ShardlowPairOrder>(box_, settings_.friction.cutoff, settings_.skin);
+  }
+  rebuild();
   compute_forces(Tally::kForcesOnly);
+}
+
+void DpdIntegrator::rebuild() {
+  list_.build(particles_, box_);
+  if (sweep_order_) sweep_order_->build(particles_, box_, [](const Vec3&) { return true; });
 }
 
 void DpdIntegrator::half_kick() {
@@ -51,7 +60,7 @@ void DpdIntegrator::half_kick() {
 }
 
 PairResult DpdIntegrator::compute_forces(Tally tally) {
-  if (list_.needs_rebuild(particles_)) list_.build(particles_, box_);
+  if (list_.needs_rebuild(particles_)) rebuild();
   particles_.zero_forces();
   if (settings_.scheme == DpdScheme::kVelocityVerlet) {
     // The velocities here are the half-step ones (see the header).
@@ -61,18 +70,24 @@ PairResult DpdIntegrator::compute_forces(Tally tally) {
   return pair_.compute(particles_, list_, tally);
 }
 
-void splitting_sweep(DpdParticles& particles, const HalfNeighbourList& list,
-                     const DpdIntegratorSettings& s, std::int64_t step) {
-  if (s.scheme == DpdScheme::kShardlow) {
-    shardlow_sweep(particles, list, s.friction, step, s.dt);
-  } else if (s.scheme == DpdScheme::kShardlowDpde) {
-    shardlow_sweep_energy_conserving(particles, list, s.friction, s.heat_capacity, step, s.dt);
+void splitting_sweep(DpdParticles& particles, const ShardlowPairOrder& order,
+                     const DpdIntegratorSettings& s, std::int64_t step,
+                     const std::function<void(int colour)>& after_colour) {
+  if (!is_shardlow(s.scheme)) return;
+  for (int c = 0; c < ShardlowPairOrder::kColours; ++c) {
+    if (s.scheme == DpdScheme::kShardlow) {
+      shardlow_sweep(particles, order.colour(c), s.friction, step, s.dt);
+    } else {
+      shardlow_sweep_energy_conserving(particles, order.colour(c), s.friction, s.heat_capacity,
+                                       step, s.dt);
+    }
+    if (after_colour) after_colour(c);
   }
 }
 
 PairResult DpdIntegrator::step(Tally tally) {
   const double dt = settings_.dt;
-  splitting_sweep(particles_, list_, settings_, step_);
+  if (sweep_order_) splitting_sweep(particles_, *sweep_order_, settings_, step_);
   half_kick();
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];

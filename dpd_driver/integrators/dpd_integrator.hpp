@@ -15,12 +15,15 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 
 #include "kernels/dpd_pair_friction.hpp"
 #include "kernels/dpd_particles.hpp"
 #include "kernels/half_neighbour_list.hpp"
 #include "kernels/orthogonal_box.hpp"
 #include "kernels/pair_style.hpp"
+#include "kernels/shardlow_pair_order.hpp"
 
 namespace pbms::dpd {
 
@@ -52,9 +55,17 @@ struct DpdIntegratorSettings {
 const DpdIntegratorSettings& checked_settings(const DpdIntegratorSettings& s);
 
 // The pairwise stochastic sweep that opens a step of the Shardlow schemes
-// (shardlow_sweep.hpp); nothing for kNve and kVelocityVerlet.
-void splitting_sweep(DpdParticles& particles, const HalfNeighbourList& list,
-                     const DpdIntegratorSettings& s, std::int64_t step);
+// (shardlow_sweep.hpp), over the pairs `order` was built with, colour by
+// colour; after_colour runs after each (a decomposed run passes the
+// velocities its ghosts got back to their owners there). Nothing for kNve
+// and kVelocityVerlet.
+void splitting_sweep(DpdParticles& particles, const ShardlowPairOrder& order,
+                     const DpdIntegratorSettings& s, std::int64_t step,
+                     const std::function<void(int colour)>& after_colour = {});
+
+[[nodiscard]] inline bool is_shardlow(DpdScheme s) {
+  return s == DpdScheme::kShardlow || s == DpdScheme::kShardlowDpde;
+}
 
 class DpdIntegrator {
  public:
@@ -80,6 +91,7 @@ class DpdIntegrator {
 
  private:
   PairResult compute_forces(Tally tally);
+  void rebuild();
   void half_kick();
 
   DpdParticles& particles_;
@@ -87,6 +99,7 @@ class DpdIntegrator {
   PairStyle& pair_;
   DpdIntegratorSettings settings_;
   HalfNeighbourList list_;
+  std::unique_ptr<ShardlowPairOrder> sweep_order_;  // Shardlow schemes only
   std::int64_t step_;
   std::vector<Vec3> scratch_forces_;
 };

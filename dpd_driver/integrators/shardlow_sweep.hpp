@@ -16,23 +16,25 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "kernels/dpd_pair_friction.hpp"
 #include "kernels/dpd_particles.hpp"
-#include "kernels/half_neighbour_list.hpp"
+#include "kernels/shardlow_pair_order.hpp"
 
 namespace pbms::dpd {
 
-// One sweep over the listed pairs closer than friction.cutoff, in list order,
-// with the bath temperature friction.temperature. step keys θ_ij; dt in ps.
-void shardlow_sweep(DpdParticles& particles, const HalfNeighbourList& list,
+// Updates the given pairs that are closer than friction.cutoff, in order
+// (ShardlowPairOrder gives them, a colour at a time), with the bath
+// temperature friction.temperature. step keys θ_ij; dt in ps.
+void shardlow_sweep(DpdParticles& particles, std::span<const ShardlowPair> pairs,
                     const DpdPairFriction& friction, std::int64_t step, double dt);
 
 // The DPDE sweep: friction.temperature is ignored, heat_capacity (C_v, eV/K,
 // the same for every mesoparticle) turns particles.internal_energy into
 // temperatures. Throws pbms::Error when a pair's internal energies are not
 // both positive, where θ_ij and σ_ij are undefined (dt too large for C_v).
-void shardlow_sweep_energy_conserving(DpdParticles& particles, const HalfNeighbourList& list,
+void shardlow_sweep_energy_conserving(DpdParticles& particles, std::span<const ShardlowPair> pairs,
                                       const DpdPairFriction& friction, double heat_capacity,
                                       std::int64_t step, double dt);
 

@@ -101,9 +101,9 @@ std::vector<Param> common_params() {
           .def(0.0)
           .at_least(0),
       Param::choice("scheme", {"velocity_verlet", "nve", "shardlow", "shardlow_dpde"},
-                    "velocity_verlet: isothermal DPD in one VV step (any rank count); nve: "
-                    "conservative forces only; shardlow / shardlow_dpde: S1 splitting, "
-                    "isothermal or energy-conserving (1 rank)")
+                    "velocity_verlet: isothermal DPD in one VV step; nve: conservative forces "
+                    "only; shardlow / shardlow_dpde: S1 splitting, isothermal or "
+                    "energy-conserving. All run on any rank count with the same result")
           .def(std::string("velocity_verlet")),
       Param::real("gamma", Dimension::kNone, "DPD friction coefficient, g/mol/ps")
           .def(0.2)
