@@ -100,7 +100,9 @@ config::StageKindSpec MpmRunStage::spec() {
                 Param::real_list("velocity", Dimension::kVelocity, "Prescribed velocity")
                     .require()
                     .length(3, 3)},
-               "Points of a group moved at a prescribed velocity (grips, flyers)")
+               "Points of a group moved at a prescribed velocity (grips, flyers). Material "
+               "sharing their cells is not strained there, and a gas pushed by such a group "
+               "is unstable (docs/mpm-driver.md, Known limits)")
       .variant("group_force",
                {Param::identifier("group", "Group of points").require(),
                 Param::real_list("force", Dimension::kForce,
