@@ -78,11 +78,9 @@ class ShardlowPairOrder {
   [[nodiscard]] std::size_t pair_count() const { return pairs_.size(); }
   [[nodiscard]] const std::array<int, 3>& cells() const { return cells_; }
   [[nodiscard]] const Vec3& cell_width() const { return width_; }
-  [[nodiscard]] double cutoff() const { return cutoff_; }
 
  private:
   OrthogonalBox box_;
-  double cutoff_;
   std::array<int, 3> cells_{};
   Vec3 width_{};
   Vec3 offset_{};  // of the first face from box.lo, Å

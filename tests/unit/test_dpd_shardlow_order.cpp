@@ -25,8 +25,9 @@ constexpr double kCutoff = 10.0;  // Å
 using IdPair = std::pair<std::int64_t, std::int64_t>;
 using Cell = std::array<int, 3>;
 
-// Particles at random in the box (a disordered state) or on an fcc lattice
-// whose planes fall on cell faces of an unshifted grid (the hard case).
+// Particles at random in the box: a disordered state. The tests pair it with
+// an fcc lattice (fcc_crystal), whose planes would fall on the faces of an
+// unshifted grid: the hard case.
 DpdParticles random_particles(const OrthogonalBox& box, int n, unsigned seed) {
   DpdParticles p;
   p.mass_per_type = {1.0};
