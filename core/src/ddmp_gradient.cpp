@@ -254,7 +254,8 @@ double face_vanishing_blend(const RegularGrid& grid, const std::array<double, 3>
   if (!c) throw Error("point is outside the MPM grid");
   double a = peak;
   for (int d = 0; d < 3; ++d) {
-    const double xi = std::clamp((x[d] - grid.origin()[d]) / grid.cell_size() - (*c)[d], 0.0, 1.0);
+    const double xi =
+        std::clamp((x[d] - grid.origin()[d]) * grid.inverse_cell_size() - (*c)[d], 0.0, 1.0);
     a *= 4.0 * xi * (1.0 - xi);
   }
   return a;

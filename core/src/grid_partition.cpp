@@ -82,7 +82,7 @@ int GridPartition::owner_of(const std::array<double, 3>& x) const {
   std::array<int, 3> p{};
   for (size_t a = 0; a < 3; ++a) {
     const int n = grid_.cells()[a];
-    int cell = static_cast<int>(std::floor((x[a] - grid_.origin()[a]) / grid_.cell_size()));
+    int cell = static_cast<int>(std::floor((x[a] - grid_.origin()[a]) * grid_.inverse_cell_size()));
     cell = std::clamp(cell, 0, n - 1);
     // The part whose [split(p), split(p+1)) holds the cell; the split is
     // monotone, so start from the proportional guess and correct it.

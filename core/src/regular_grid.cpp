@@ -63,7 +63,7 @@ NodeBox NodeBox::intersected(const NodeBox& other) const {
 
 RegularGrid::RegularGrid(const std::array<double, 3>& origin, double h,
                          const std::array<int, 3>& cells)
-    : origin_(origin), h_(h), cells_(cells) {
+    : origin_(origin), h_(h), inv_h_(1.0 / h), cells_(cells) {
   if (!(h > 0.0) || !std::isfinite(h)) {
     throw Error("grid cell size must be a positive number, got " + std::to_string(h));
   }
@@ -138,7 +138,7 @@ std::optional<std::array<int, 3>> RegularGrid::cell_of(const std::array<double, 
   for (int d = 0; d < 3; ++d) {
     // Clamping covers the upper faces and a quotient rounded up to cells_[d]
     // for a point just inside them.
-    const auto s = static_cast<int>(std::floor((x[d] - origin_[d]) / h_));
+    const auto s = static_cast<int>(std::floor((x[d] - origin_[d]) * inv_h_));
     c[d] = std::clamp(s, 0, cells_[d] - 1);
   }
   return c;

@@ -46,10 +46,15 @@ void LinearElastic::update(const Mat3& velocity_gradient, double dt,
   update_one(elasticity_, velocity_gradient, dt, state);
 }
 
-void LinearElastic::update_many(const Mat3* velocity_gradients, double dt,
-                                MaterialPointState* states, std::size_t n) const {
+void LinearElastic::update_block(MaterialBlock& block, std::size_t begin, std::size_t end,
+                                 double dt) const {
   const IsotropicElasticity elasticity = elasticity_;
-  for (std::size_t i = 0; i < n; ++i) update_one(elasticity, velocity_gradients[i], dt, states[i]);
+  for (std::size_t i = begin; i < end; ++i) {
+    MaterialPointState s;
+    for (int c = 0; c < 6; ++c) s.stress[c] = block.stress[c][i];
+    update_one(elasticity, block.velocity_gradient(i), dt, s);
+    for (int c = 0; c < 6; ++c) block.stress[c][i] = s.stress[c];
+  }
 }
 
 double LinearElastic::wave_speed(const MaterialPointState& state) const {

@@ -24,8 +24,8 @@ class LinearElastic final : public Material {
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
   void update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const override;
-  void update_many(const Mat3* velocity_gradients, double dt, MaterialPointState* states,
-                   std::size_t n) const override;
+  void update_block(MaterialBlock& block, std::size_t begin, std::size_t end,
+                    double dt) const override;
   // sqrt((lambda + 2 mu) / rho).
   [[nodiscard]] double wave_speed(const MaterialPointState& state) const override;
   [[nodiscard]] double stored_energy_density(const MaterialPointState& state) const override;

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "material_block.hpp"
 #include "material_point_state.hpp"
 #include "symmetric_tensor.hpp"
 
@@ -30,13 +31,18 @@ class Material {
   virtual void update(const Mat3& velocity_gradient, double dt,
                       MaterialPointState& state) const = 0;
 
-  // update() for n points in a row: states[i] over velocity_gradients[i].
-  // The solver calls this for runs of points of one material, which keeps
-  // the virtual call out of the per-point loop; a material may override it
-  // with an inlined loop, which must give the same result as update().
-  virtual void update_many(const Mat3* velocity_gradients, double dt, MaterialPointState* states,
-                           std::size_t n) const {
-    for (std::size_t i = 0; i < n; ++i) update(velocity_gradients[i], dt, states[i]);
+  // update() for points begin..end-1 of a block, each over its own
+  // velocity gradient. The solver calls this for runs of points of one
+  // material, which keeps the virtual call out of the per-point loop; a
+  // material may override it with a loop the compiler vectorises across
+  // points, which must give update()'s result to round-off.
+  virtual void update_block(MaterialBlock& block, std::size_t begin, std::size_t end,
+                            double dt) const {
+    for (std::size_t i = begin; i < end; ++i) {
+      MaterialPointState s = block.state(i);
+      update(block.velocity_gradient(i), dt, s);
+      block.set_state(i, s);
+    }
   }
 
   // Fastest signal speed in the material at this state, for the CFL bound

@@ -327,31 +327,114 @@ template <class Stencil>
   }
 }
 
-// F <- (I + dt L) F and the density from det F; returns det F. Throws if
-// the point inverted.
-[[gnu::always_inline]] inline double MpmSolver::update_deformation(MaterialPoints& points, size_t p,
-                                                                   const Mat3& L, double dt) const {
-  points.F[p] = (Mat3::Identity() + dt * L) * points.F[p];
-  const double J = points.F[p].determinant();
-  if (!(J > 0.0)) [[unlikely]] {
-    throw Error(fmt::format(
-        "material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted (det F = {:.3g}): the time "
-        "step is too large or the material failed",
-        points.id[p], points.x[p][0], points.x[p][1], points.x[p][2], J));
-  }
-  points.state[p].density = points.mass[p] / (points.volume0[p] * J);
-  return J;
+namespace {
+
+// det of a 3x3 matrix held row by row in nine scalars (Eigen's cofactor
+// expansion, written out so that a loop over points vectorises).
+[[gnu::always_inline]] inline double det3(const double (&f)[9]) {
+  return f[0] * (f[4] * f[8] - f[7] * f[5]) - f[3] * (f[1] * f[8] - f[7] * f[2]) +
+         f[6] * (f[1] * f[5] - f[4] * f[2]);
 }
 
-void MpmSolver::update_point_stress(MaterialPoints& points, size_t p, const Mat3& L,
+// sigma : sym(L) for point i of a block.
+[[gnu::always_inline]] inline double stress_power_density(const MaterialBlock& b, size_t i) {
+  const double d3 = 0.5 * (b.L[5][i] + b.L[7][i]);
+  const double d4 = 0.5 * (b.L[2][i] + b.L[6][i]);
+  const double d5 = 0.5 * (b.L[1][i] + b.L[3][i]);
+  return b.stress[0][i] * b.L[0][i] + b.stress[1][i] * b.L[4][i] + b.stress[2][i] * b.L[8][i] +
+         2.0 * (b.stress[3][i] * d3 + b.stress[4][i] * d4 + b.stress[5][i] * d5);
+}
+
+}  // namespace
+
+// Stress update (s-12 to s-14) of points p0 .. p0 + m - 1, whose velocity
+// gradients b.L holds: F <- (I + dt L) F, the density from det F, the
+// material's stress update, and the stress power sigma : D V integrated by
+// the trapezoidal rule into the point's work. The points are transposed
+// into columns first, so that each loop below runs across points in SIMD
+// registers. Throws, naming the point, if one inverted.
+void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m, MaterialBlock& b,
                                     double dt) const {
-  const SymmetricTensor D = SymmetricTensor::from_matrix(0.5 * (L + L.transpose()));
-  const double power_before = double_contraction(points.state[p].stress, D) * points.volume(p);
-  const double J = update_deformation(points, p, L, dt);
-  materials_[static_cast<size_t>(points.material[p])]->update(L, dt, points.state[p]);
-  // Stress power sigma : D V, by the trapezoidal rule over the step.
-  const double power_after = double_contraction(points.state[p].stress, D) * points.volume0[p] * J;
-  points.work[p] += 0.5 * dt * (power_before + power_after) * opt_.units.stress_volume_to_energy;
+  constexpr size_t K = MaterialBlock::kSize;
+  alignas(64) double F[9][K];
+  alignas(64) double J[K], v0[K], power_before[K];
+  for (size_t i = 0; i < m; ++i) {
+    const size_t p = p0 + i;
+    const Mat3& f = points.F[p];
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) F[3 * r + c][i] = f(r, c);
+    }
+    const MaterialPointState& s = points.state[p];
+    for (int c = 0; c < 6; ++c) b.stress[c][i] = s.stress[c];
+    b.plastic_strain[i] = s.plastic_strain;
+    b.internal_energy[i] = s.internal_energy;
+    b.density[i] = points.mass[p];  // divided by the new volume below
+    v0[i] = points.volume0[p];
+  }
+  for (size_t i = 0; i < m; ++i) {
+    double f[9], g[9];
+    for (int k = 0; k < 9; ++k) f[k] = F[k][i];
+    power_before[i] = stress_power_density(b, i) * v0[i] * det3(f);
+    for (int r = 0; r < 3; ++r) {
+      const double l0 = b.L[3 * r][i], l1 = b.L[3 * r + 1][i], l2 = b.L[3 * r + 2][i];
+      for (int c = 0; c < 3; ++c)
+        g[3 * r + c] = f[3 * r + c] + dt * (l0 * f[c] + l1 * f[3 + c] + l2 * f[6 + c]);
+    }
+    for (int k = 0; k < 9; ++k) F[k][i] = g[k];
+    J[i] = det3(g);
+    b.density[i] /= v0[i] * J[i];
+  }
+  for (size_t i = 0; i < m; ++i) {
+    if (!(J[i] > 0.0)) [[unlikely]] {
+      const size_t p = p0 + i;
+      throw Error(fmt::format(
+          "material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted (det F = {:.3g}): the time "
+          "step is too large or the material failed",
+          points.id[p], points.x[p][0], points.x[p][1], points.x[p][2], J[i]));
+    }
+  }
+  for (size_t i = 0; i < m;) {
+    const int mat = points.material[p0 + i];
+    size_t j = i + 1;
+    while (j < m && points.material[p0 + j] == mat) ++j;
+    materials_[static_cast<size_t>(mat)]->update_block(b, i, j, dt);
+    i = j;
+  }
+  const double kv = opt_.units.stress_volume_to_energy;
+  for (size_t i = 0; i < m; ++i) {
+    const double power_after = stress_power_density(b, i) * v0[i] * J[i];
+    power_before[i] = 0.5 * dt * (power_before[i] + power_after) * kv;
+  }
+  for (size_t i = 0; i < m; ++i) {
+    const size_t p = p0 + i;
+    Mat3& f = points.F[p];
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) f(r, c) = F[3 * r + c][i];
+    }
+    points.state[p] = b.state(i);
+    points.work[p] += power_before[i];
+  }
+}
+
+// Moves point p by dt v and wraps it on periodic axes; throws, naming the
+// point, if it left the grid. The test against the grid's half-open box
+// settles nearly every point without the wrap.
+[[gnu::always_inline]] inline void MpmSolver::move_point(MaterialPoints& points, size_t p,
+                                                         const Vec3& v, double dt) const {
+  Vec3& x = points.x[p];
+  add_scaled(x, dt, v);
+  const auto& d = patch_.domain;
+  const auto& lo = d.origin();
+  const auto& hi = d.upper();
+  if (x[0] >= lo[0] && x[0] < hi[0] && x[1] >= lo[1] && x[1] < hi[1] && x[2] >= lo[2] &&
+      x[2] < hi[2]) [[likely]] {
+    return;
+  }
+  x = d.wrapped(x, patch_.periodic);
+  if (!d.contains(x)) {
+    throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})",
+                            points.id[p], x[0], x[1], x[2]));
+  }
 }
 
 void MpmSolver::sum_rigid() {
@@ -387,18 +470,6 @@ void MpmSolver::hold_prescribed(const MaterialPoints& points, const BoundaryCond
   }
 }
 
-void MpmSolver::finish_positions(MaterialPoints& points) const {
-  const auto& d = patch_.domain;
-  for (size_t p = 0; p < points.size(); ++p) {
-    Vec3& x = points.x[p];
-    x = d.wrapped(x, patch_.periodic);
-    if (!d.contains(x)) {
-      throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})",
-                              points.id[p], x[0], x[1], x[2]));
-    }
-  }
-}
-
 void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
   const size_t n = points.size();
   double ref = opt_.reference_point_mass;
@@ -412,7 +483,6 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
   } else {
     step_passes(GenericEval{*shape_, local_, {}}, points, bc, dt);
   }
-  finish_positions(points);
 }
 
 void MpmSolver::build_dual(const MaterialPoints& points) {
@@ -426,6 +496,17 @@ void MpmSolver::build_dual(const MaterialPoints& points) {
   if (patch_.sum_shared) patch_.sum_shared(dual_volume_.data(), 1, 1);
 }
 
+namespace {
+
+[[gnu::always_inline]] inline void put_velocity_gradient(const Mat3& L, size_t i,
+                                                         MaterialBlock& b) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) b.L[3 * r + c][i] = L(r, c);
+  }
+}
+
+}  // namespace
+
 template <class Eval>
 void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
                             double dt) {
@@ -434,6 +515,8 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   const bool last = opt_.stress_update == StressUpdate::kLast;
   const bool prescribed = !bc.point_velocities.empty();
   Mat3 L;
+  constexpr size_t kBlock = MaterialBlock::kSize;
+  const auto block = std::make_unique<MaterialBlock>();
 
   if (last) {
     scatter(eval, points, bc, true);  // s-1 to s-4
@@ -451,10 +534,14 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     if (opt_.ddmp) nodal_gradient(velocity_, G_);
     pack_kinematics(velocity_, velocity_);
     Vec3 unused;
-    for (size_t p = 0; p < n; ++p) {
-      const auto& s = locate(eval, points, p);
-      point_kinematics(points, p, s, L, unused);
-      update_point_stress(points, p, L, dt);
+    for (size_t p0 = 0; p0 < n; p0 += kBlock) {
+      const size_t m = std::min(kBlock, n - p0);
+      for (size_t i = 0; i < m; ++i) {
+        const auto& s = locate(eval, points, p0 + i);
+        point_kinematics(points, p0 + i, s, L, unused);
+        put_velocity_gradient(L, i, *block);
+      }
+      update_stress_block(points, p0, m, *block, dt);
     }
     scatter(eval, points, bc, true);
     sum_shared(sums::kMass, 7);
@@ -542,7 +629,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     } else {
       Vec3 vel = lanes3(k, 3);
       if (prescribed) hold_prescribed(points, bc, p, vel);
-      add_scaled(points.x[p], dt, vel);  // s-8
+      move_point(points, p, vel, dt);  // s-8
     }
   }
 
@@ -553,42 +640,21 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
   pack_kinematics(remap_velocity_, velocity_);
   // Stress update (s-12 to s-14) at the positions the step started from,
-  // then the move with the momentum-update velocity (s-8). Blocks of points:
-  // kinematics per point, then one material call per run of points of one
-  // material, then the stress power and the move; the result is that of
-  // update_point_stress point by point.
-  constexpr size_t kBlock = 64;
-  std::array<Mat3, kBlock> Lb;
-  std::array<SymmetricTensor, kBlock> Db;
-  std::array<double, kBlock> power_before, Jb;
+  // then the move with the momentum-update velocity (s-8), a block of
+  // points at a time: the kinematics point by point from the grid, then the
+  // stress update across the block's points, then the move.
   std::array<Vec3, kBlock> vb;
-  const double kv = opt_.units.stress_volume_to_energy;
   for (size_t p0 = 0; p0 < n; p0 += kBlock) {
     const size_t m = std::min(kBlock, n - p0);
     for (size_t i = 0; i < m; ++i) {
-      const size_t p = p0 + i;
-      const auto& s = locate(eval, points, p);
-      point_kinematics(points, p, s, Lb[i], vb[i]);
-      const Mat3& Lp = Lb[i];
-      Db[i] = SymmetricTensor::from_matrix(0.5 * (Lp + Lp.transpose()));
-      power_before[i] = double_contraction(points.state[p].stress, Db[i]) * points.volume(p);
-      Jb[i] = update_deformation(points, p, Lp, dt);
+      const auto& s = locate(eval, points, p0 + i);
+      point_kinematics(points, p0 + i, s, L, vb[i]);
+      put_velocity_gradient(L, i, *block);
     }
-    for (size_t i = 0; i < m;) {
-      const int mat = points.material[p0 + i];
-      size_t j = i + 1;
-      while (j < m && points.material[p0 + j] == mat) ++j;
-      materials_[static_cast<size_t>(mat)]->update_many(&Lb[i], dt, &points.state[p0 + i], j - i);
-      i = j;
-    }
+    update_stress_block(points, p0, m, *block, dt);
     for (size_t i = 0; i < m; ++i) {
-      const size_t p = p0 + i;
-      // Stress power sigma : D V, by the trapezoidal rule over the step.
-      const double power_after =
-          double_contraction(points.state[p].stress, Db[i]) * points.volume0[p] * Jb[i];
-      points.work[p] += 0.5 * dt * (power_before[i] + power_after) * kv;
-      if (prescribed) hold_prescribed(points, bc, p, vb[i]);
-      add_scaled(points.x[p], dt, vb[i]);
+      if (prescribed) hold_prescribed(points, bc, p0 + i, vb[i]);
+      move_point(points, p0 + i, vb[i], dt);
     }
   }
 }

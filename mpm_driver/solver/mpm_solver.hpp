@@ -13,6 +13,7 @@
 #include "boundary_conditions.hpp"
 #include "material_points.hpp"
 #include "materials/material.hpp"
+#include "materials/material_block.hpp"
 #include "node_lanes.hpp"
 #include "pbms/grid/ddmp_gradient.hpp"
 #include "pbms/grid/regular_grid.hpp"
@@ -137,13 +138,13 @@ class MpmSolver {
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
   void build_dual(const MaterialPoints& points);
   void add_dual_force();
-  double update_deformation(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
-  void update_point_stress(MaterialPoints& points, size_t p, const Mat3& L, double dt) const;
+  void update_stress_block(MaterialPoints& points, size_t p0, size_t m, MaterialBlock& b,
+                           double dt) const;
+  void move_point(MaterialPoints& points, size_t p, const Vec3& v, double dt) const;
   void sum_rigid();
   void impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const;
   void hold_prescribed(const MaterialPoints& points, const BoundaryConditions& bc, size_t p,
                        Vec3& vel) const;
-  void finish_positions(MaterialPoints& points) const;
   double alpha(const MaterialPoints& points, size_t p) const;
 
   GridPatch patch_;
