@@ -100,9 +100,10 @@ config::StageKindSpec MpmRunStage::spec() {
                 Param::real_list("velocity", Dimension::kVelocity, "Prescribed velocity")
                     .require()
                     .length(3, 3)},
-               "Points of a group moved at a prescribed velocity (grips, flyers). Material "
-               "sharing their cells is not strained there, and a gas pushed by such a group "
-               "is unstable (docs/mpm-driver.md, Known limits)")
+               "Points of a group moved at a prescribed velocity (grips, flyers, pistons), "
+               "with the nodes they touch. A slow compression to large strain needs "
+               "gradient: ddmp with ddmp_blend: face_vanishing (docs/mpm-driver.md, Known "
+               "limits)")
       .variant("group_force",
                {Param::identifier("group", "Group of points").require(),
                 Param::real_list("force", Dimension::kForce,

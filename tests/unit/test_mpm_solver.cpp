@@ -342,3 +342,114 @@ TEST(MpmSolver, IdealGasBoxCompressedAdiabaticallyKeepsPVGamma) {
   RecordProperty("max_pv_gamma_deviation", std::to_string(worst));
   std::printf("ideal gas: V/V0 = %.3f, max |P V^gamma / P0 V0^gamma - 1| = %.2e\n", v / v0, worst);
 }
+
+// A column between a fixed wall (x = 0) and a piston of points moved by a
+// point-velocity condition, periodic across (y, z), compressed slowly to
+// 60 % of its length. Plain gradients accumulate the cell-crossing error of
+// the point quadrature (a point crossing a node moves its whole volume from
+// one cell's force integral to the next), which under a monotonic
+// compression always shows as a volume gain: here V/V0 ends near 0.74 for an
+// elastic column and a gas column grows to 1.33 V0 (4 points per cell).
+// Dual-domain gradients blended at the cell faces take the force from the
+// nodal stress over the occupied cells, and the column follows the piston.
+namespace {
+struct PistonResult {
+  double volume_ratio = 0.0;        // sum V0 det F of the column over its start
+  double geometric_ratio = 0.0;     // wall-to-piston-face length over its start
+  double pv_gamma_deviation = 0.0;  // largest |P V^gamma / P0 V0^gamma - 1|
+};
+
+PistonResult compress_with_point_piston(bool gas, int per_cell, double flip) {
+  const double h = 0.5, length = 10.0, speed = 0.008, gamma = 1.4;
+  const grid::RegularGrid g({0, 0, 0}, h, {24, 1, 1});
+  const grid::GridPartition part(g, {false, true, true}, 1);
+  mpi::HaloSum halo(MPI_COMM_SELF, part);
+  GridPatch patch{g, part.nodes_of(0), {false, true, true}, [&halo](double* d, int c, int s) {
+                    halo.sum(d, c, s);
+                  }};
+  std::vector<std::unique_ptr<Material>> mats;
+  mats.push_back(gas ? MaterialRegistry::create("ideal_gas", {{"gamma", gamma}})
+                     : MaterialRegistry::create(
+                           "linear_elastic", {{"youngs_modulus", 10.0}, {"poisson_ratio", 0.0}}));
+  mats.push_back(MaterialRegistry::create("linear_elastic",
+                                          {{"youngs_modulus", 10.0}, {"poisson_ratio", 0.0}}));
+  const MaterialPointState column = mats[0]->initial_state(1.0, gas ? 1.0 : 0.0);
+  const MaterialPointState piston = mats[1]->initial_state(1.0, 0.0);
+  SolverOptions opt;
+  opt.flip = flip;
+  opt.ddmp = true;
+  opt.ddmp_face_vanishing = true;
+  MpmSolver solver(patch, grid::ShapeFunctionRegistry::create("linear"), std::move(mats), opt);
+  MaterialPoints pts;
+  const double dx = h / per_cell, area = h * h;
+  const int n_column = static_cast<int>(std::lround(length / dx));
+  for (int i = 0; i < n_column + 2 * per_cell; ++i) {
+    const bool in_column = i < n_column;
+    pts.add(i, {dx * (i + 0.5), 0.25, 0.25}, dx * area, in_column ? column : piston,
+            in_column ? 0 : 1, in_column ? 1u : 2u);
+  }
+  BoundaryConditions bc;
+  bc.nodes.push_back({{{0, 0, 0}, {1, 2, 2}}, {true, false, false}, {0, 0, 0}});
+  bc.point_velocities.push_back({2u, {true, false, false}, {-speed, 0.0, 0.0}});
+  for (size_t p = 0; p < pts.size(); ++p) {
+    if (pts.in_group(p, 2u)) pts.v[p] = {-speed, 0.0, 0.0};
+  }
+  auto column_state = [&] {
+    double V = 0.0, PV = 0.0;
+    for (size_t p = 0; p < pts.size(); ++p) {
+      if (!pts.in_group(p, 1u)) continue;
+      V += pts.volume(p);
+      PV += -pts.state[p].stress.voigt[0] * pts.volume(p);
+    }
+    return std::pair{V, (PV / V) * std::pow(V, gamma)};
+  };
+  const auto [v0, inv0] = column_state();
+  const double dt = 0.5 * solver.stable_time_step(pts);
+  const double duration = 0.4 * length / speed;
+  const int steps = static_cast<int>(std::lround(duration / dt));
+  PistonResult r;
+  for (int s = 0; s < steps; ++s) {
+    solver.step(pts, bc, dt);
+    if (gas) {
+      const auto [v, inv] = column_state();
+      r.pv_gamma_deviation = std::max(r.pv_gamma_deviation, std::abs(inv / inv0 - 1.0));
+    }
+  }
+  double face = g.upper()[0];
+  for (size_t p = 0; p < pts.size(); ++p) {
+    if (pts.in_group(p, 2u)) face = std::min(face, pts.x[p][0] - 0.5 * dx);
+  }
+  r.volume_ratio = column_state().first / v0;
+  r.geometric_ratio = face / length;
+  return r;
+}
+}  // namespace
+
+TEST(MpmSolver, PointPistonCompressesElasticColumnToThePistonVolume) {
+  // Within 1 % from 2 points per cell; at 1 the column's end is resolved
+  // only to half a cell, 2.5 % of the length, and 2 % is allowed.
+  for (const auto& [per_cell, tol] : {std::pair{4, 0.01}, {2, 0.01}, {1, 0.02}}) {
+    const auto r = compress_with_point_piston(false, per_cell, 1.0);
+    EXPECT_NEAR(r.geometric_ratio, 0.6, 1e-3);  // the stroke, to a step
+    EXPECT_NEAR(r.volume_ratio / r.geometric_ratio, 1.0, tol) << per_cell << " points per cell";
+    std::printf("elastic, %d per cell: V/V0 = %.4f, piston %.4f\n", per_cell, r.volume_ratio,
+                r.geometric_ratio);
+  }
+}
+
+TEST(MpmSolver, PointPistonCompressesGasAdiabatically) {
+  // The piston moves at 0.3 % of the sound speed: quasi-static, so P V^gamma
+  // holds to the adiabatic update's accuracy and V follows the piston. One
+  // point per cell is run with PIC: under FLIP its grid-scale modes grow
+  // (docs/mpm-driver.md, Known limits). There the gas point that shares the
+  // piston's cell moves with the piston's nodes, so up to a cell of gas, 5 %
+  // of the column, lags the compression: 6 % is allowed (4.8 % measured).
+  for (const auto& [per_cell, flip, tol] :
+       {std::tuple{4, 1.0, 0.01}, {2, 1.0, 0.01}, {1, 0.0, 0.06}}) {
+    const auto r = compress_with_point_piston(true, per_cell, flip);
+    EXPECT_NEAR(r.volume_ratio / r.geometric_ratio, 1.0, tol) << per_cell << " points per cell";
+    EXPECT_LT(r.pv_gamma_deviation, 0.01) << per_cell << " points per cell";
+    std::printf("gas, %d per cell, flip %.0f: V/V0 = %.4f, piston %.4f, max PV^g dev %.1e\n",
+                per_cell, flip, r.volume_ratio, r.geometric_ratio, r.pv_gamma_deviation);
+  }
+}
