@@ -161,7 +161,8 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   const bool external = body || !bc.loads.empty();
   const bool rigid = !bc.point_velocities.empty();
   for (size_t p = 0; p < points.size(); ++p) {
-    const auto& s = locate(eval, points, p);
+    decltype(auto) s = locate(eval, points, p);
+    grid::keep_weights_in_memory(s);
     const double m = points.mass[p];
     const Vec3& v = points.v[p];
     Lanes8 pn = {m, m * v[0], m * v[1], m * v[2], 0.0, 0.0, 0.0, 0.0};
@@ -537,7 +538,8 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     for (size_t p0 = 0; p0 < n; p0 += kBlock) {
       const size_t m = std::min(kBlock, n - p0);
       for (size_t i = 0; i < m; ++i) {
-        const auto& s = locate(eval, points, p0 + i);
+        decltype(auto) s = locate(eval, points, p0 + i);
+        grid::keep_weights_in_memory(s);
         point_kinematics(points, p0 + i, s, L, unused);
         put_velocity_gradient(L, i, *block);
       }
@@ -647,7 +649,8 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   for (size_t p0 = 0; p0 < n; p0 += kBlock) {
     const size_t m = std::min(kBlock, n - p0);
     for (size_t i = 0; i < m; ++i) {
-      const auto& s = locate(eval, points, p0 + i);
+      decltype(auto) s = locate(eval, points, p0 + i);
+      grid::keep_weights_in_memory(s);
       point_kinematics(points, p0 + i, s, L, vb[i]);
       put_velocity_gradient(L, i, *block);
     }
