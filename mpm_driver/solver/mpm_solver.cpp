@@ -358,7 +358,7 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
                                     double dt) const {
   constexpr size_t K = MaterialBlock::kSize;
   alignas(64) double F[9][K];
-  alignas(64) double J[K], v0[K], power_before[K];
+  alignas(64) double J[K], v0[K], power_before[K], work_increment[K];
   for (size_t i = 0; i < m; ++i) {
     const size_t p = p0 + i;
     const Mat3& f = points.F[p];
@@ -404,7 +404,7 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
   const double kv = opt_.units.stress_volume_to_energy;
   for (size_t i = 0; i < m; ++i) {
     const double power_after = stress_power_density(b, i) * v0[i] * J[i];
-    power_before[i] = 0.5 * dt * (power_before[i] + power_after) * kv;
+    work_increment[i] = 0.5 * dt * (power_before[i] + power_after) * kv;
   }
   for (size_t i = 0; i < m; ++i) {
     const size_t p = p0 + i;
@@ -413,7 +413,7 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
       for (int c = 0; c < 3; ++c) f(r, c) = F[3 * r + c][i];
     }
     points.state[p] = b.state(i);
-    points.work[p] += power_before[i];
+    points.work[p] += work_increment[i];
   }
 }
 
