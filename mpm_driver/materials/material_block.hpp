@@ -32,6 +32,12 @@ struct MaterialBlock {
     return l;
   }
 
+  void set_velocity_gradient(std::size_t i, const Mat3& l) {
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) L[3 * a + b][i] = l(a, b);
+    }
+  }
+
   [[nodiscard]] MaterialPointState state(std::size_t i) const {
     MaterialPointState s;
     for (int c = 0; c < 6; ++c) s.stress[c] = stress[c][i];

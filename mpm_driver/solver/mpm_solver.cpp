@@ -365,10 +365,7 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) F[3 * r + c][i] = f(r, c);
     }
-    const MaterialPointState& s = points.state[p];
-    for (int c = 0; c < 6; ++c) b.stress[c][i] = s.stress[c];
-    b.plastic_strain[i] = s.plastic_strain;
-    b.internal_energy[i] = s.internal_energy;
+    b.set_state(i, points.state[p]);
     b.density[i] = points.mass[p];  // divided by the new volume below
     v0[i] = points.volume0[p];
   }
@@ -497,17 +494,6 @@ void MpmSolver::build_dual(const MaterialPoints& points) {
   if (patch_.sum_shared) patch_.sum_shared(dual_volume_.data(), 1, 1);
 }
 
-namespace {
-
-[[gnu::always_inline]] inline void put_velocity_gradient(const Mat3& L, size_t i,
-                                                         MaterialBlock& b) {
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) b.L[3 * r + c][i] = L(r, c);
-  }
-}
-
-}  // namespace
-
 template <class Eval>
 void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
                             double dt) {
@@ -541,7 +527,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
         decltype(auto) s = locate(eval, points, p0 + i);
         grid::keep_weights_in_memory(s);
         point_kinematics(points, p0 + i, s, L, unused);
-        put_velocity_gradient(L, i, *block);
+        block->set_velocity_gradient(i, L);
       }
       update_stress_block(points, p0, m, *block, dt);
     }
@@ -652,7 +638,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
       decltype(auto) s = locate(eval, points, p0 + i);
       grid::keep_weights_in_memory(s);
       point_kinematics(points, p0 + i, s, L, vb[i]);
-      put_velocity_gradient(L, i, *block);
+      block->set_velocity_gradient(i, L);
     }
     update_stress_block(points, p0, m, *block, dt);
     for (size_t i = 0; i < m; ++i) {

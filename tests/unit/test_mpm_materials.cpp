@@ -104,9 +104,7 @@ TEST(MaterialBlock, UpdateBlockMatchesUpdatePointByPoint) {
         for (int b = 0; b < 3; ++b) l(a, b) = u(rng);
       }
       block.set_state(i, s);
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) block.L[3 * a + b][i] = l(a, b);
-      }
+      block.set_velocity_gradient(i, l);
       expected[i] = s;
       if (i >= 5 && i < 61) m->update(l, dt, expected[i]);
     }
