@@ -27,7 +27,8 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
       pair_(std::move(pair)),
       settings_(checked_settings(settings)),
       ghosts_(domain_, interaction_cutoff(*pair_, settings) + settings.skin),
-      list_(interaction_cutoff(*pair_, settings), settings.skin),
+      list_(interaction_cutoff(*pair_, settings), settings.skin,
+            settings.scheme == DpdScheme::kVelocityVerlet),
       step_(settings.first_step) {
   if (is_shardlow(settings_.scheme)) {
     sweep_order_ =

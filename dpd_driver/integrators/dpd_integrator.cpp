@@ -34,7 +34,8 @@ DpdIntegrator::DpdIntegrator(DpdParticles& particles, const OrthogonalBox& box, 
       box_(box),
       pair_(pair),
       settings_(checked_settings(settings)),
-      list_(interaction_cutoff(pair, settings), settings.skin),
+      list_(interaction_cutoff(pair, settings), settings.skin,
+            settings.scheme == DpdScheme::kVelocityVerlet),
       step_(settings.first_step) {
   if (settings_.scheme != DpdScheme::kNve) check_pair_noise_ids(particles_);
   if (is_shardlow(settings_.scheme)) {

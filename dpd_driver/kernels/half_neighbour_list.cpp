@@ -34,7 +34,8 @@ int neighbour_cells(int c, int n, bool periodic, std::array<int, 3>& out) {
 
 }  // namespace
 
-HalfNeighbourList::HalfNeighbourList(double cutoff, double skin) : cutoff_(cutoff), skin_(skin) {
+HalfNeighbourList::HalfNeighbourList(double cutoff, double skin, bool keep_pair_ids)
+    : cutoff_(cutoff), skin_(skin), keep_pair_ids_(keep_pair_ids) {
   if (!(cutoff > 0.0)) throw Error("neighbour list: cutoff must be > 0 Å");
   if (!(skin >= 0.0)) throw Error("neighbour list: skin must be >= 0 Å");
 }
@@ -152,6 +153,16 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
     }
   }
   first_[rows] = entries_.size();
+  if (keep_pair_ids_) {
+    pair_ids_.resize(entries_.size());
+    for (std::size_t i = 0; i < rows; ++i) {
+      const auto id_i = static_cast<std::uint32_t>(particles.id[i]);
+      for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
+        const auto id_j = static_cast<std::uint32_t>(particles.id[neighbour(entries_[k])]);
+        pair_ids_[k] = (std::uint64_t{std::max(id_i, id_j)} << 32) | std::min(id_i, id_j);
+      }
+    }
+  }
   x_at_build_.assign(particles.x.begin(), particles.x.begin() + static_cast<std::ptrdiff_t>(rows));
   ++builds_;
 }

@@ -27,8 +27,10 @@ class HalfNeighbourList {
   static constexpr std::size_t kMaxParticles = std::size_t{1} << kIndexBits;
 
   // Lists pairs closer than cutoff + skin (both Å). Throws pbms::Error for a
-  // non-positive cutoff or a negative skin.
-  HalfNeighbourList(double cutoff, double skin);
+  // non-positive cutoff or a negative skin. keep_pair_ids: also store every
+  // entry's two global ids (pair_ids()), 8 bytes an entry, which a run
+  // without the DPD thermostat does not need.
+  HalfNeighbourList(double cutoff, double skin, bool keep_pair_ids = true);
 
   // Wraps positions into the box on periodic axes (counting the crossings
   // in particles.image), then lists all pairs. Throws pbms::Error when a
@@ -68,6 +70,13 @@ class HalfNeighbourList {
   // Added to x_i - x_j to give the separation the list was built for, Å.
   [[nodiscard]] const Vec3& shift(int code) const { return shifts_[code]; }
   [[nodiscard]] const std::array<Vec3, 27>& shifts() const { return shifts_; }
+  // Entry k's two particle ids, each truncated to 32 bits, the lower in the
+  // low half: the pair-noise counter words (pair_noise.hpp), fixed from one
+  // build to the next, so the thermostat reads them in the order it reads
+  // the entries instead of fetching id[j] per pair. Null unless kept.
+  [[nodiscard]] const std::uint64_t* pair_ids() const {
+    return keep_pair_ids_ ? pair_ids_.data() : nullptr;
+  }
   // r_ij = x_i - x_j + shift of entry e of particle i: the separation every
   // scalar pair loop starts from (the vectorised force loop gathers its own).
   [[nodiscard]] Vec3 separation(const Vec3* x, std::size_t i, Entry e) const {
@@ -82,6 +91,8 @@ class HalfNeighbourList {
   long builds_ = 0;
   std::vector<std::size_t> first_;
   std::vector<Entry> entries_;
+  bool keep_pair_ids_;
+  std::vector<std::uint64_t> pair_ids_;
   std::array<Vec3, 27> shifts_{};
   std::vector<Vec3> x_at_build_;
   // Cell list scratch, kept between builds to avoid reallocation.

@@ -25,8 +25,9 @@
 #include "kernels/dpd_pair_friction.hpp"
 #include "kernels/dpd_particles.hpp"
 #include "kernels/half_neighbour_list.hpp"
-#include "kernels/pair_noise.hpp"
+#include "kernels/pair_friction_coefficients.hpp"
 #include "kernels/pair_style.hpp"
+#include "pbms/error.hpp"
 
 namespace pbms::dpd {
 
@@ -45,10 +46,10 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
   alignas(64) double dx[kBatch], dy[kBatch], dz[kBatch], r2[kBatch];
   alignas(64) double pair_energy[kBatch], force_over_r[kBatch];
   alignas(64) std::size_t owner[kBatch], neighbour[kBatch];
-  // The friction term's: relative velocities, the pair's ids, θ and the
-  // friction force over r.
-  alignas(64) double dvx[kBatch], dvy[kBatch], dvz[kBatch], theta[kBatch], friction_over_r[kBatch];
-  alignas(64) std::uint32_t id_low[kBatch], id_high[kBatch];
+  // The friction term's: the pair's ids and the two parts of its force over
+  // r (pair_friction_coefficients.hpp).
+  alignas(64) std::uint64_t id_pair[kBatch];
+  alignas(64) double total_over_r[kBatch], drag[kBatch];
 
   const std::size_t n = list.particle_count();
   const Vec3* x = particles.x.data();
@@ -57,7 +58,7 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
   const auto& shifts = list.shifts();
   const double cutoff_squared = kernel.cutoff_squared;
   const Vec3* v = kFriction ? friction->velocity : nullptr;
-  const std::int64_t* id = particles.id.data();
+  const std::uint64_t* list_ids = list.pair_ids();
 
   double energy = 0.0;
   double vxx = 0.0, vyy = 0.0, vzz = 0.0, vxy = 0.0, vxz = 0.0, vyz = 0.0;
@@ -68,35 +69,22 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
       kernel.evaluate(owner[m], neighbour[m], r2[m], pair_energy[m], force_over_r[m]);
     }
     if constexpr (kFriction) {
-      // Velocities and ids of the kept pairs only, gathered apart from the
-      // cutoff test so that its loop stays light.
-      for (int m = 0; m < count; ++m) {
-        const std::size_t i = owner[m], j = neighbour[m];
-        dvx[m] = v[i][0] - v[j][0];
-        dvy[m] = v[i][1] - v[j][1];
-        dvz[m] = v[i][2] - v[j][2];
-        const auto id_i = static_cast<std::uint32_t>(id[i]);
-        const auto id_j = static_cast<std::uint32_t>(id[j]);
-        id_low[m] = std::min(id_i, id_j);
-        id_high[m] = std::max(id_i, id_j);
-      }
-      pair_noise_batch(friction->noise, id_low, id_high, friction->step, count, theta);
-      const double inverse_cutoff = friction->inverse_cutoff;
-      const double friction_factor = friction->friction_factor;
-      const double noise_factor = friction->noise_factor;
-      for (int m = 0; m < count; ++m) {
-        const double inverse_r = 1.0 / std::sqrt(r2[m]);
-        const double w_r = std::max(0.0, 1.0 - r2[m] * inverse_r * inverse_cutoff);
-        // (e_ij · v_ij), from r_ij · v_ij / r.
-        const double approach = (dx[m] * dvx[m] + dy[m] * dvy[m] + dz[m] * dvz[m]) * inverse_r;
-        friction_over_r[m] =
-            (noise_factor * theta[m] - friction_factor * w_r * approach) * w_r * inverse_r;
-      }
+      // Everything but the velocities, across pairs; the scatter loop
+      // below, which visits every pair's i and j anyway, adds the
+      // dissipative part from v_i − v_j without a second gather and store
+      // of the relative velocities.
+      pair_friction_coefficients(*friction, id_pair, r2, force_over_r, count, total_over_r, drag);
     }
     // Forces on the owner are summed while it stays the same, rather than
     // stored pair by pair into one f[i].
     std::size_t current = owner[0];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0;
+    double vxi = 0.0, vyi = 0.0, vzi = 0.0;
+    if constexpr (kFriction) {
+      vxi = v[current][0];
+      vyi = v[current][1];
+      vzi = v[current][2];
+    }
     for (int m = 0; m < count; ++m) {
       const std::size_t i = owner[m];
       const std::size_t j = neighbour[m];
@@ -106,12 +94,21 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
         f[current][2] += fzi;
         fxi = fyi = fzi = 0.0;
         current = i;
+        if constexpr (kFriction) {
+          vxi = v[i][0];
+          vyi = v[i][1];
+          vzi = v[i][2];
+        }
       }
-      double total_over_r = force_over_r[m];
-      if constexpr (kFriction) total_over_r += friction_over_r[m];
-      const double fx = dx[m] * total_over_r;
-      const double fy = dy[m] * total_over_r;
-      const double fz = dz[m] * total_over_r;
+      double pair_over_r = force_over_r[m];
+      if constexpr (kFriction) {
+        const double approach =
+            dx[m] * (vxi - v[j][0]) + dy[m] * (vyi - v[j][1]) + dz[m] * (vzi - v[j][2]);
+        pair_over_r = total_over_r[m] - drag[m] * approach;
+      }
+      const double fx = dx[m] * pair_over_r;
+      const double fy = dy[m] * pair_over_r;
+      const double fz = dz[m] * pair_over_r;
       fxi += fx;
       fyi += fy;
       fzi += fz;
@@ -156,6 +153,7 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
       r2[count] = d2;
       owner[count] = i;
       neighbour[count] = j;
+      if constexpr (kFriction) id_pair[count] = list_ids[k];
       count += d2 < cutoff_squared ? 1 : 0;
       if (count == kBatch) {
         process(count);
@@ -181,6 +179,9 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
                            const PairFrictionTerm* friction) {
   const bool tallied = tally == Tally::kEnergyAndVirial;
   if (friction != nullptr) {
+    if (list.pair_ids() == nullptr) {
+      throw Error("DPD thermostat: the neighbour list was built without the pair ids");
+    }
     return tallied
                ? pair_force_loop<Tally::kEnergyAndVirial, true>(kernel, particles, list, friction)
                : pair_force_loop<Tally::kForcesOnly, true>(kernel, particles, list, friction);

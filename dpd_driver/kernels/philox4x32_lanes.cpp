@@ -1,10 +1,9 @@
 #include "kernels/philox4x32_lanes.hpp"
 
-// GCC 12's AVX-512 headers start some intrinsics from an undefined vector
-// and then warn about it at -O3; nothing of ours is uninitialised.
+#include "kernels/philox4x32_avx512.hpp"
+
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <immintrin.h>
 
 namespace pbms::dpd {
 
@@ -13,12 +12,12 @@ namespace {
 using Word = std::uint32_t;
 using Wide = std::uint64_t;
 
-// Philox4x32 constants (Salmon et al. 2011, as in Random123's philox.h).
-constexpr Word kMultiplier0 = 0xD2511F53u;
-constexpr Word kMultiplier1 = 0xCD9E8D57u;
-constexpr Word kWeyl0 = 0x9E3779B9u;
-constexpr Word kWeyl1 = 0xBB67AE85u;
-constexpr int kRounds = 10;
+using philox::kMultiplier0;
+using philox::kMultiplier1;
+using philox::kRounds;
+using philox::kWeyl0;
+using philox::kWeyl1;
+using philox::RoundKeys;
 
 void lanes_portable(const Word key[2], const Word* low, const Word* high, Word step0, Word step1,
                     int count, PhiloxLaneOutput out) {
@@ -42,84 +41,76 @@ void lanes_portable(const Word key[2], const Word* low, const Word* high, Word s
   }
 }
 
-// The 32 × 32 → 64 products of even and odd lanes come from two
-// vpmuludq; the blends put high and low halves back in lane order.
+// The vector paths keep one counter in each 64-bit lane (philox4x32_avx512.hpp).
 __attribute__((target("avx512f"))) void lanes_avx512(const Word key[2], const Word* low,
                                                      const Word* high, Word step0, Word step1,
                                                      int count, PhiloxLaneOutput out) {
-  const __m512i m0 = _mm512_set1_epi64(kMultiplier0);
-  const __m512i m1 = _mm512_set1_epi64(kMultiplier1);
-  constexpr __mmask16 kOdd = 0xAAAA;
+  const RoundKeys keys(key);
   for (int b = 0; b < count; b += 16) {
     const int left = count - b;
     const __mmask16 mask = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u);
-    __m512i c0 = _mm512_maskz_loadu_epi32(mask, low + b);
-    __m512i c1 = _mm512_maskz_loadu_epi32(mask, high + b);
-    __m512i c2 = _mm512_set1_epi32(static_cast<int>(step0));
-    __m512i c3 = _mm512_set1_epi32(static_cast<int>(step1));
-    __m512i k0 = _mm512_set1_epi32(static_cast<int>(key[0]));
-    __m512i k1 = _mm512_set1_epi32(static_cast<int>(key[1]));
-    const __m512i weyl0 = _mm512_set1_epi32(static_cast<int>(kWeyl0));
-    const __m512i weyl1 = _mm512_set1_epi32(static_cast<int>(kWeyl1));
-    for (int round = 0; round < kRounds; ++round) {
-      const __m512i even0 = _mm512_mul_epu32(c0, m0);
-      const __m512i odd0 = _mm512_mul_epu32(_mm512_srli_epi64(c0, 32), m0);
-      const __m512i even1 = _mm512_mul_epu32(c2, m1);
-      const __m512i odd1 = _mm512_mul_epu32(_mm512_srli_epi64(c2, 32), m1);
-      const __m512i hi0 = _mm512_mask_blend_epi32(kOdd, _mm512_srli_epi64(even0, 32), odd0);
-      const __m512i lo0 = _mm512_mask_blend_epi32(kOdd, even0, _mm512_slli_epi64(odd0, 32));
-      const __m512i hi1 = _mm512_mask_blend_epi32(kOdd, _mm512_srli_epi64(even1, 32), odd1);
-      const __m512i lo1 = _mm512_mask_blend_epi32(kOdd, even1, _mm512_slli_epi64(odd1, 32));
-      c0 = _mm512_ternarylogic_epi32(hi1, c1, k0, 0x96);  // three-way xor
-      c1 = lo1;
-      c2 = _mm512_ternarylogic_epi32(hi0, c3, k1, 0x96);
-      c3 = lo0;
-      k0 = _mm512_add_epi32(k0, weyl0);
-      k1 = _mm512_add_epi32(k1, weyl1);
+    const __m512i low16 = _mm512_maskz_loadu_epi32(mask, low + b);
+    const __m512i high16 = _mm512_maskz_loadu_epi32(mask, high + b);
+    philox::Counters8<2> x;
+    x.c[0][0] = _mm512_cvtepu32_epi64(_mm512_castsi512_si256(low16));
+    x.c[0][1] = _mm512_cvtepu32_epi64(_mm512_extracti64x4_epi64(low16, 1));
+    x.c[1][0] = _mm512_cvtepu32_epi64(_mm512_castsi512_si256(high16));
+    x.c[1][1] = _mm512_cvtepu32_epi64(_mm512_extracti64x4_epi64(high16, 1));
+    philox::philox_avx512(keys, step0, step1, x);
+    // vpmovqd keeps the low half of each lane: the words, in counter order.
+    for (int k = 0; k < 4; ++k) {
+      const __m512i both =
+          _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvtepi64_epi32(x.c[k][0])),
+                             _mm512_cvtepi64_epi32(x.c[k][1]), 1);
+      _mm512_mask_storeu_epi32(out.word[k] + b, mask, both);
     }
-    _mm512_mask_storeu_epi32(out.word[0] + b, mask, c0);
-    _mm512_mask_storeu_epi32(out.word[1] + b, mask, c1);
-    _mm512_mask_storeu_epi32(out.word[2] + b, mask, c2);
-    _mm512_mask_storeu_epi32(out.word[3] + b, mask, c3);
   }
 }
 
+// The same layout with 4 counters per register and no three-way xor.
 __attribute__((target("avx2"))) void lanes_avx2(const Word key[2], const Word* low,
                                                 const Word* high, Word step0, Word step1, int count,
                                                 PhiloxLaneOutput out) {
+  const RoundKeys keys(key);
   const __m256i m0 = _mm256_set1_epi64x(kMultiplier0);
   const __m256i m1 = _mm256_set1_epi64x(kMultiplier1);
-  const __m256i weyl0 = _mm256_set1_epi32(static_cast<int>(kWeyl0));
-  const __m256i weyl1 = _mm256_set1_epi32(static_cast<int>(kWeyl1));
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  // The even 32-bit elements hold the words after vpermd.
+  const __m256i pack = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
   for (int b = 0; b < count; b += 8) {
     const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(count - b), lane);
-    __m256i c0 = _mm256_maskload_epi32(reinterpret_cast<const int*>(low + b), mask);
-    __m256i c1 = _mm256_maskload_epi32(reinterpret_cast<const int*>(high + b), mask);
-    __m256i c2 = _mm256_set1_epi32(static_cast<int>(step0));
-    __m256i c3 = _mm256_set1_epi32(static_cast<int>(step1));
-    __m256i k0 = _mm256_set1_epi32(static_cast<int>(key[0]));
-    __m256i k1 = _mm256_set1_epi32(static_cast<int>(key[1]));
+    const __m256i low8 = _mm256_maskload_epi32(reinterpret_cast<const int*>(low + b), mask);
+    const __m256i high8 = _mm256_maskload_epi32(reinterpret_cast<const int*>(high + b), mask);
+    __m256i a0 = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(low8));
+    __m256i b0 = _mm256_cvtepu32_epi64(_mm256_extracti128_si256(low8, 1));
+    __m256i a1 = _mm256_cvtepu32_epi64(_mm256_castsi256_si128(high8));
+    __m256i b1 = _mm256_cvtepu32_epi64(_mm256_extracti128_si256(high8, 1));
+    __m256i a2 = _mm256_set1_epi64x(step0), b2 = a2;
+    __m256i a3 = _mm256_set1_epi64x(step1), b3 = a3;
     for (int round = 0; round < kRounds; ++round) {
-      const __m256i even0 = _mm256_mul_epu32(c0, m0);
-      const __m256i odd0 = _mm256_mul_epu32(_mm256_srli_epi64(c0, 32), m0);
-      const __m256i even1 = _mm256_mul_epu32(c2, m1);
-      const __m256i odd1 = _mm256_mul_epu32(_mm256_srli_epi64(c2, 32), m1);
-      const __m256i hi0 = _mm256_blend_epi32(_mm256_srli_epi64(even0, 32), odd0, 0xAA);
-      const __m256i lo0 = _mm256_blend_epi32(even0, _mm256_slli_epi64(odd0, 32), 0xAA);
-      const __m256i hi1 = _mm256_blend_epi32(_mm256_srli_epi64(even1, 32), odd1, 0xAA);
-      const __m256i lo1 = _mm256_blend_epi32(even1, _mm256_slli_epi64(odd1, 32), 0xAA);
-      c0 = _mm256_xor_si256(_mm256_xor_si256(hi1, c1), k0);
-      c1 = lo1;
-      c2 = _mm256_xor_si256(_mm256_xor_si256(hi0, c3), k1);
-      c3 = lo0;
-      k0 = _mm256_add_epi32(k0, weyl0);
-      k1 = _mm256_add_epi32(k1, weyl1);
+      const __m256i k0 = _mm256_set1_epi64x(keys.k0[round]);
+      const __m256i k1 = _mm256_set1_epi64x(keys.k1[round]);
+      const __m256i ap0 = _mm256_mul_epu32(a0, m0), bp0 = _mm256_mul_epu32(b0, m0);
+      const __m256i ap1 = _mm256_mul_epu32(a2, m1), bp1 = _mm256_mul_epu32(b2, m1);
+      a0 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(ap1, 32), a1), k0);
+      b0 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(bp1, 32), b1), k0);
+      a2 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(ap0, 32), a3), k1);
+      b2 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(bp0, 32), b3), k1);
+      a1 = ap1;
+      b1 = bp1;
+      a3 = ap0;
+      b3 = bp0;
     }
-    _mm256_maskstore_epi32(reinterpret_cast<int*>(out.word[0] + b), mask, c0);
-    _mm256_maskstore_epi32(reinterpret_cast<int*>(out.word[1] + b), mask, c1);
-    _mm256_maskstore_epi32(reinterpret_cast<int*>(out.word[2] + b), mask, c2);
-    _mm256_maskstore_epi32(reinterpret_cast<int*>(out.word[3] + b), mask, c3);
+    const auto store = [&](Word* to, __m256i first4, __m256i second4) {
+      const __m256i words =
+          _mm256_permute2x128_si256(_mm256_permutevar8x32_epi32(first4, pack),
+                                    _mm256_permutevar8x32_epi32(second4, pack), 0x20);
+      _mm256_maskstore_epi32(reinterpret_cast<int*>(to + b), mask, words);
+    };
+    store(out.word[0], a0, b0);
+    store(out.word[1], a1, b1);
+    store(out.word[2], a2, b2);
+    store(out.word[3], a3, b3);
   }
 }
 

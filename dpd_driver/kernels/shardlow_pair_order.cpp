@@ -18,7 +18,7 @@ int mod3(int c) {
 }  // namespace
 
 ShardlowPairOrder::ShardlowPairOrder(const OrthogonalBox& box, double cutoff, double skin)
-    : box_(box), list_(cutoff, skin) {
+    : box_(box), list_(cutoff, skin, false) {
   const double reach = cutoff + skin;
   for (int a = 0; a < 3; ++a) {
     const double length = box.length(a);

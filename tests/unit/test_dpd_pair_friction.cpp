@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "kernels/dpd_pair_friction.hpp"
 #include "kernels/half_neighbour_list.hpp"
 #include "kernels/kinetic_sums.hpp"
+#include "kernels/pair_friction_coefficients.hpp"
 #include "pbms/units.hpp"
 
 using namespace pbms::dpd;
@@ -149,4 +151,49 @@ TEST(DpdShardlowSweep, DpdeMovesAllTheKineticEnergyItTakesIntoTheInternalEnergie
   // The relative motion exchanged energy with the internal energies: the test
   // is not passing vacuously.
   EXPECT_GT(std::abs(pair.particles.internal_energy[0] - heat_capacity * 250.0), 1e-4);
+}
+
+// The batch kernel of the force loop (AVX-512 with Philox in registers, or
+// the portable path) against the formula written out with pair_noise(), for
+// both θ distributions and a count that leaves partial vectors.
+TEST(DpdPairFriction, BatchCoefficientsMatchTheFormulaOnEveryPath) {
+  constexpr int kCount = 150;
+  const std::vector<Vec3> unused_velocity;
+  std::vector<std::uint64_t> id_pair(kCount);
+  std::vector<double> r2(kCount), force_over_r(kCount);
+  for (int m = 0; m < kCount; ++m) {
+    const std::uint64_t a = 1 + 7919u * static_cast<std::uint64_t>(m);
+    const std::uint64_t b = 40000000u - 104729u * static_cast<std::uint64_t>(m);
+    id_pair[m] = m % 2 == 0 ? (a << 32 | b) : (b << 32 | a);  // either order
+    // r from 4 to 11 Å: some pairs beyond the 10 Å cutoff, where w = 0.
+    const double r = 4.0 + 7.0 * m / kCount;
+    r2[m] = r * r;
+    force_over_r[m] = 0.01 * std::sin(m);
+  }
+  for (const PairNoiseDistribution noise :
+       {PairNoiseDistribution::kUniform, PairNoiseDistribution::kGaussian}) {
+    const DpdPairFriction friction{0.2, kCutoff, 298.0, 123, noise};
+    const std::int64_t step = 4'294'967'296LL + 17;  // both step words in use
+    const PairFrictionTerm term(friction, unused_velocity, step, 0.01);
+    for (const SimdPath path : {SimdPath::kPortable, SimdPath::kAvx512}) {
+      if (!simd_path_supported(path)) continue;
+      std::vector<double> total(kCount), drag(kCount);
+      pair_friction_coefficients(path, term, id_pair.data(), r2.data(), force_over_r.data(), kCount,
+                                 total.data(), drag.data());
+      for (int m = 0; m < kCount; ++m) {
+        const double r = std::sqrt(r2[m]);
+        const double w_over_r = std::max(0.0, 1.0 - r / kCutoff) / r;
+        const double theta = pair_noise(term.noise, static_cast<std::int64_t>(id_pair[m] >> 32),
+                                        static_cast<std::int64_t>(id_pair[m] & 0xffffffffu), step);
+        const double expected_total = force_over_r[m] + term.noise_factor * theta * w_over_r;
+        const double expected_drag = term.friction_factor * w_over_r * w_over_r;
+        // w = 1 − r/r_c cancels near the cutoff, so its rounding is
+        // measured against the size the terms would have at w = 1.
+        const double noise_scale = term.noise_factor * std::max(1.0, std::abs(theta)) / r;
+        EXPECT_NEAR(total[m], expected_total, 1e-14 * (std::abs(force_over_r[m]) + noise_scale))
+            << "pair " << m;
+        EXPECT_NEAR(drag[m], expected_drag, 1e-14 * term.friction_factor / r2[m]) << "pair " << m;
+      }
+    }
+  }
 }

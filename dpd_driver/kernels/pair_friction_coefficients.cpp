@@ -1,0 +1,148 @@
+#include "kernels/pair_friction_coefficients.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/pair_noise.hpp"
+#include "kernels/philox4x32_avx512.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+namespace pbms::dpd {
+
+namespace {
+
+constexpr int kChunk = 64;
+
+void ordered_ids(const std::uint64_t* id_pair, int count, std::uint32_t* low, std::uint32_t* high) {
+  for (int m = 0; m < count; ++m) {
+    const auto a = static_cast<std::uint32_t>(id_pair[m]);
+    const auto b = static_cast<std::uint32_t>(id_pair[m] >> 32);
+    low[m] = std::min(a, b);
+    high[m] = std::max(a, b);
+  }
+}
+
+void coefficients_portable(const PairFrictionTerm& term, const std::uint64_t* id_pair,
+                           const double* r2, const double* force_over_r, int count,
+                           double* total_over_r, double* drag) {
+  alignas(64) std::uint32_t low[kChunk], high[kChunk];
+  alignas(64) double theta[kChunk];
+  for (int c = 0; c < count; c += kChunk) {
+    const int n = std::min(kChunk, count - c);
+    ordered_ids(id_pair + c, n, low, high);
+    pair_noise_batch(term.noise, low, high, term.step, n, theta);
+    for (int m = 0; m < n; ++m) {
+      const double s = 1.0 / std::sqrt(r2[c + m]);
+      const double w_over_r = std::max(0.0, 1.0 - r2[c + m] * s * term.inverse_cutoff) * s;
+      total_over_r[c + m] = force_over_r[c + m] + term.noise_factor * theta[m] * w_over_r;
+      drag[c + m] = term.friction_factor * w_over_r * w_over_r;
+    }
+  }
+}
+
+__attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
+    const PairFrictionTerm& term, const std::uint64_t* id_pair, const double* r2,
+    const double* force_over_r, int count, double* total_over_r, double* drag) {
+  constexpr int kGroups = 2;  // of 8 pairs per pass, for Philox's latency
+  const bool draw_here = term.noise.distribution == PairNoiseDistribution::kUniform;
+  const philox::RoundKeys keys(term.noise.key);
+  const auto step_bits = static_cast<std::uint64_t>(term.step);
+  const auto step0 = static_cast<std::uint32_t>(step_bits);
+  const auto step1 = static_cast<std::uint32_t>(step_bits >> 32);
+  const __m512i low_half = _mm512_set1_epi64(0xffffffffLL);
+  const __m512i exponent_one = _mm512_set1_epi64(0x3ff0000000000000LL);
+  const __m512d one = _mm512_set1_pd(1.0);
+  const __m512d half = _mm512_set1_pd(0.5);
+  const __m512d three_halves = _mm512_set1_pd(1.5);
+  const __m512d inverse_cutoff = _mm512_set1_pd(term.inverse_cutoff);
+  const __m512d noise_factor = _mm512_set1_pd(term.noise_factor);
+  const __m512d friction_factor = _mm512_set1_pd(term.friction_factor);
+
+  alignas(64) std::uint32_t low[kChunk], high[kChunk];
+  alignas(64) double theta[kChunk];
+  for (int c = 0; c < count; c += kChunk) {
+    const int n = std::min(kChunk, count - c);
+    if (!draw_here) {
+      ordered_ids(id_pair + c, n, low, high);
+      pair_noise_batch(term.noise, low, high, term.step, n, theta);
+    }
+    for (int m = 0; m < n; m += 8 * kGroups) {
+      __mmask8 mask[kGroups];
+      for (int g = 0; g < kGroups; ++g) {
+        const int left = std::clamp(n - m - 8 * g, 0, 8);
+        mask[g] = static_cast<__mmask8>((1u << left) - 1u);
+      }
+      __m512d th[kGroups];
+      if (draw_here) {
+        philox::Counters8<kGroups> x;
+        for (int g = 0; g < kGroups; ++g) {
+          const __m512i ids = _mm512_maskz_loadu_epi64(mask[g], id_pair + c + m + 8 * g);
+          const __m512i a = _mm512_and_si512(ids, low_half);
+          const __m512i b = _mm512_srli_epi64(ids, 32);
+          x.c[0][g] = _mm512_min_epu64(a, b);
+          x.c[1][g] = _mm512_max_epu64(a, b);
+        }
+        philox::philox_avx512<kGroups, false>(keys, step0, step1, x);
+        for (int g = 0; g < kGroups; ++g) {
+          // θ = √3 (2u − 1), u = (k + ½) 2^-52 for the top 52 bits k of
+          // words 1:0, in the operations of pair_noise.cpp (same bits).
+          const __m512i bits = _mm512_or_si512(_mm512_slli_epi64(x.c[1][g], 32),
+                                               _mm512_and_si512(x.c[0][g], low_half));
+          const __m512d mantissa =
+              _mm512_castsi512_pd(_mm512_or_si512(_mm512_srli_epi64(bits, 12), exponent_one));
+          const __m512d u = _mm512_add_pd(_mm512_sub_pd(mantissa, one), _mm512_set1_pd(0x1p-53));
+          th[g] = _mm512_mul_pd(_mm512_set1_pd(1.7320508075688772),
+                                _mm512_sub_pd(_mm512_mul_pd(_mm512_set1_pd(2.0), u), one));
+        }
+      } else {
+        for (int g = 0; g < kGroups; ++g) {
+          th[g] = _mm512_maskz_loadu_pd(mask[g], theta + m + 8 * g);
+        }
+      }
+      for (int g = 0; g < kGroups; ++g) {
+        const int at = c + m + 8 * g;
+        // Lanes past the end read r² = 1, so that none divides by zero.
+        const __m512d d2 = _mm512_mask_loadu_pd(one, mask[g], r2 + at);
+        const __m512d half_d2 = _mm512_mul_pd(half, d2);
+        __m512d s = _mm512_rsqrt14_pd(d2);
+        s = _mm512_mul_pd(s, _mm512_fnmadd_pd(half_d2, _mm512_mul_pd(s, s), three_halves));
+        s = _mm512_mul_pd(s, _mm512_fnmadd_pd(half_d2, _mm512_mul_pd(s, s), three_halves));
+        const __m512d w = _mm512_max_pd(
+            _mm512_setzero_pd(), _mm512_fnmadd_pd(_mm512_mul_pd(d2, s), inverse_cutoff, one));
+        const __m512d w_over_r = _mm512_mul_pd(w, s);
+        const __m512d conservative = _mm512_maskz_loadu_pd(mask[g], force_over_r + at);
+        _mm512_mask_storeu_pd(
+            total_over_r + at, mask[g],
+            _mm512_fmadd_pd(_mm512_mul_pd(noise_factor, th[g]), w_over_r, conservative));
+        _mm512_mask_storeu_pd(drag + at, mask[g],
+                              _mm512_mul_pd(_mm512_mul_pd(friction_factor, w_over_r), w_over_r));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void pair_friction_coefficients(const PairFrictionTerm& term, const std::uint64_t* id_pair,
+                                const double* r2, const double* force_over_r, int count,
+                                double* total_over_r, double* drag) {
+  pair_friction_coefficients(fastest_simd_path(), term, id_pair, r2, force_over_r, count,
+                             total_over_r, drag);
+}
+
+void pair_friction_coefficients(SimdPath path, const PairFrictionTerm& term,
+                                const std::uint64_t* id_pair, const double* r2,
+                                const double* force_over_r, int count, double* total_over_r,
+                                double* drag) {
+  if (path == SimdPath::kAvx512 && simd_path_supported(SimdPath::kAvx512)) {
+    coefficients_avx512(term, id_pair, r2, force_over_r, count, total_over_r, drag);
+  } else {
+    coefficients_portable(term, id_pair, r2, force_over_r, count, total_over_r, drag);
+  }
+}
+
+}  // namespace pbms::dpd
+
+#pragma GCC diagnostic pop
