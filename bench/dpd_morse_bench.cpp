@@ -12,8 +12,8 @@
 //     (target: PBMS ≥ 1.2 × the faster LAMMPS run);
 //   - full DPD (kVelocityVerlet, γ = 0.2 g/mol/ps, 298 K, DPD cutoff
 //     10 Å): BENCH dpd_thermostat_cost = its time / the NVE time (target
-//     ≤ 1.5), with θ Gaussian as stages draw it by default ("dpd" or
-//     "dpd_gaussian") or uniform ("dpd_uniform").
+//     ≤ 1.5), with θ uniform as stages draw it by default ("dpd" or
+//     "dpd_uniform") or Gaussian ("dpd_gaussian").
 //
 // Usage: dpd_morse_bench WORK_DIR writes WORK_DIR/data.lmp (positions and
 // the very velocities PBMS starts from, so that lmp runs the same

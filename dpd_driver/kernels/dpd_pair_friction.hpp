@@ -30,7 +30,7 @@ struct DpdPairFriction {
   double cutoff = 0.0;       // Å, range of w_R and w_D
   double temperature = 0.0;  // K, the bath of σ² = 2 γ k_B T
   std::uint64_t seed = 0;    // keys θ_ij
-  PairNoiseDistribution noise = PairNoiseDistribution::kGaussian;
+  PairNoiseDistribution noise = PairNoiseDistribution::kUniform;
 };
 
 // One step's friction, as the pair loop evaluates it: the prefactors in
