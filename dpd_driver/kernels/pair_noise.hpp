@@ -19,14 +19,16 @@
 //             equations of motion only through its first two moments, so the
 //             stationary state is the same as with Gaussian θ to O(Δt).
 //
-// Speed is the point of this file: the thermostat's cost is dominated by the
-// draw. Philox runs 16 (AVX-512) or 8 (AVX2) pairs at a time when the
-// processor has the instructions, chosen at run time; it is integer
-// arithmetic, so every path gives the same bits. The log and cos of
-// Box–Muller are branch-free polynomials (pair_noise.cpp) rather than libm
-// calls, so that they vectorise and give the same value in a vector lane as
-// in the scalar remainder: a pair's θ must not depend on where in a batch it
-// fell, which the decomposition decides.
+// Speed is the point of this file: the draw is most of the thermostat's
+// cost. The force loop's own path (pair_friction_coefficients.hpp) draws
+// uniform θ in registers with the same bits. Philox runs 8 (AVX-512) or 4
+// (AVX2) pairs to a register when the processor has the instructions,
+// chosen at run time; it is integer arithmetic, so every path gives the
+// same bits. The log and cos of Box–Muller are branch-free polynomials
+// (pair_noise.cpp) rather than libm calls, so that they vectorise and give
+// the same value in a vector lane as in the scalar remainder: a pair's θ
+// must not depend on where in a batch it fell, which the decomposition
+// decides.
 #pragma once
 
 #include <cstdint>

@@ -2,9 +2,9 @@
 // Random123's philox.h) for many counters at once: one key, counters
 // {c0[m], c1[m], c2, c3} that differ in their first two words. The DPD pair
 // noise needs one draw per pair per step, and a scalar draw costs more than
-// the conservative force of the pair; 16 (AVX-512) or 8 (AVX2) lanes make it
-// cheap. Integer arithmetic only, so every path returns the same bits, and a
-// unit test holds each to Random123's own generator.
+// the conservative force of the pair; 8 (AVX-512) or 4 (AVX2) counters per
+// register (philox4x32_avx512.hpp) make it cheap. Integer arithmetic only, so every path returns
+// the same bits, and a unit test holds each to Random123's own generator.
 #pragma once
 
 #include <cstdint>
