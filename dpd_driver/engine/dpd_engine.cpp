@@ -27,8 +27,7 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
       pair_(std::move(pair)),
       settings_(checked_settings(settings)),
       ghosts_(domain_, interaction_cutoff(*pair_, settings) + settings.skin),
-      list_(interaction_cutoff(*pair_, settings), settings.skin,
-            settings.scheme == DpdScheme::kVelocityVerlet),
+      list_(interaction_cutoff(*pair_, settings), settings.skin, friction_in_force_loop(settings)),
       step_(settings.first_step) {
   if (is_shardlow(settings_.scheme)) {
     sweep_order_ =
@@ -137,7 +136,7 @@ void DpdEngine::half_kick() {
 
 PairResult DpdEngine::compute_forces(Tally tally) {
   particles_.zero_forces();
-  if (settings_.scheme == DpdScheme::kVelocityVerlet) {
+  if (friction_in_force_loop(settings_)) {
     // Half-step velocities (dpd_integrator.hpp), ghosts' included.
     return add_conservative_and_friction_forces(*pair_, particles_, particles_.v, list_,
                                                 settings_.friction, step_, settings_.dt, tally);

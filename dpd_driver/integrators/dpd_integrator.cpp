@@ -14,6 +14,10 @@ double interaction_cutoff(const PairStyle& pair, const DpdIntegratorSettings& se
   return std::max(pair.cutoff(), settings.friction.cutoff);
 }
 
+bool friction_in_force_loop(const DpdIntegratorSettings& settings) {
+  return settings.scheme == DpdScheme::kVelocityVerlet;
+}
+
 const DpdIntegratorSettings& checked_settings(const DpdIntegratorSettings& settings) {
   if (!(settings.dt > 0.0)) throw Error("DPD integrator: dt must be > 0 ps");
   if (settings.scheme == DpdScheme::kNve) return settings;
@@ -34,8 +38,7 @@ DpdIntegrator::DpdIntegrator(DpdParticles& particles, const OrthogonalBox& box, 
       box_(box),
       pair_(pair),
       settings_(checked_settings(settings)),
-      list_(interaction_cutoff(pair, settings), settings.skin,
-            settings.scheme == DpdScheme::kVelocityVerlet),
+      list_(interaction_cutoff(pair, settings), settings.skin, friction_in_force_loop(settings)),
       step_(settings.first_step) {
   if (settings_.scheme != DpdScheme::kNve) check_pair_noise_ids(particles_);
   if (is_shardlow(settings_.scheme)) {
@@ -63,7 +66,7 @@ void DpdIntegrator::half_kick() {
 PairResult DpdIntegrator::compute_forces(Tally tally) {
   if (list_.needs_rebuild(particles_)) rebuild();
   particles_.zero_forces();
-  if (settings_.scheme == DpdScheme::kVelocityVerlet) {
+  if (friction_in_force_loop(settings_)) {
     // The velocities here are the half-step ones (see the header).
     return add_conservative_and_friction_forces(pair_, particles_, particles_.v, list_,
                                                 settings_.friction, step_, settings_.dt, tally);

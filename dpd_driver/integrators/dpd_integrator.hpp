@@ -49,6 +49,10 @@ struct DpdIntegratorSettings {
 // the DPD cutoff too unless the scheme is kNve.
 [[nodiscard]] double interaction_cutoff(const PairStyle& pair, const DpdIntegratorSettings& s);
 
+// True when the scheme adds the DPD friction in the force loop (velocity
+// Verlet), whose neighbour list must then keep the pair ids.
+[[nodiscard]] bool friction_in_force_loop(const DpdIntegratorSettings& s);
+
 // Throws pbms::Error for a non-positive dt or, outside kNve, a negative γ,
 // a non-positive DPD cutoff, a negative bath temperature or (kShardlowDpde)
 // a non-positive C_v. Returns its argument.

@@ -122,6 +122,33 @@ TEST(DpdNeighbourList, ShiftGivesTheMinimumImageSeparation) {
   EXPECT_DOUBLE_EQ(p.x[0][2] - p.x[1][2] + s[2], -1.0);
 }
 
+// The noise counter words kept per entry: the two ids of the pair, lower
+// in the low half, whatever the order of the particles; none when not kept.
+TEST(DpdNeighbourList, KeepsEachEntrysOrderedPairIdsOnlyWhenAsked) {
+  OrthogonalBox box;
+  box.hi = {20.0, 20.0, 20.0};
+  DpdParticles p = random_particles(300, box, 11);
+  // Ids that do not follow the index, and one past 2^31.
+  for (std::size_t i = 0; i < p.size(); ++i) p.id[i] = static_cast<std::int64_t>(7919 * (300 - i));
+  p.id[5] = (std::int64_t{1} << 31) + 3;
+  HalfNeighbourList kept(4.0, 0.5);
+  kept.build(p, box);
+  ASSERT_GT(kept.pair_count(), 100u);
+  ASSERT_NE(kept.pair_ids(), nullptr);
+  for (std::size_t i = 0; i < kept.particle_count(); ++i) {
+    for (std::size_t k = kept.first(i); k < kept.first(i + 1); ++k) {
+      const auto a = static_cast<std::uint64_t>(p.id[i]);
+      const auto b =
+          static_cast<std::uint64_t>(p.id[HalfNeighbourList::neighbour(kept.entries()[k])]);
+      EXPECT_EQ(kept.pair_ids()[k], (std::max(a, b) << 32) | std::min(a, b)) << "entry " << k;
+    }
+  }
+  HalfNeighbourList plain(4.0, 0.5, false);
+  plain.build(p, box);
+  EXPECT_EQ(plain.pair_count(), kept.pair_count());
+  EXPECT_EQ(plain.pair_ids(), nullptr);
+}
+
 TEST(DpdNeighbourList, NeedsRebuildOnlyBeyondHalfTheSkin) {
   OrthogonalBox box;
   box.hi = {30.0, 30.0, 30.0};

@@ -10,6 +10,7 @@
 #include "kernels/half_neighbour_list.hpp"
 #include "kernels/kinetic_sums.hpp"
 #include "kernels/pair_friction_coefficients.hpp"
+#include "pbms/error.hpp"
 #include "pbms/units.hpp"
 
 using namespace pbms::dpd;
@@ -196,4 +197,14 @@ TEST(DpdPairFriction, BatchCoefficientsMatchTheFormulaOnEveryPath) {
       }
     }
   }
+}
+
+TEST(DpdPairFriction, RefusesAListBuiltWithoutThePairIds) {
+  Pair pair(6.0);
+  HalfNeighbourList plain(kCutoff, 0.5, false);
+  plain.build(pair.particles, pair.box);
+  const DpdPairFriction friction{5.0, kCutoff, 298.0, 11};
+  EXPECT_THROW(
+      add_dissipative_random_forces(pair.particles, pair.particles.v, plain, friction, 0, 0.01),
+      pbms::Error);
 }
