@@ -136,7 +136,8 @@ void pair_friction_coefficients(SimdPath path, const PairFrictionTerm& term,
                                 const std::uint64_t* id_pair, const double* r2,
                                 const double* force_over_r, int count, double* total_over_r,
                                 double* drag) {
-  if (path == SimdPath::kAvx512 && simd_path_supported(SimdPath::kAvx512)) {
+  // fastest_simd_path() asks the processor once; this runs once per batch.
+  if (path == SimdPath::kAvx512 && fastest_simd_path() == SimdPath::kAvx512) {
     coefficients_avx512(term, id_pair, r2, force_over_r, count, total_over_r, drag);
   } else {
     coefficients_portable(term, id_pair, r2, force_over_r, count, total_over_r, drag);
