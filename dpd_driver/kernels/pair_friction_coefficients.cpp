@@ -15,12 +15,10 @@ namespace {
 
 constexpr int kChunk = 64;
 
-void ordered_ids(const std::uint64_t* id_pair, int count, std::uint32_t* low, std::uint32_t* high) {
+void split_ids(const std::uint64_t* id_pair, int count, std::uint32_t* low, std::uint32_t* high) {
   for (int m = 0; m < count; ++m) {
-    const auto a = static_cast<std::uint32_t>(id_pair[m]);
-    const auto b = static_cast<std::uint32_t>(id_pair[m] >> 32);
-    low[m] = std::min(a, b);
-    high[m] = std::max(a, b);
+    low[m] = static_cast<std::uint32_t>(id_pair[m]);
+    high[m] = static_cast<std::uint32_t>(id_pair[m] >> 32);
   }
 }
 
@@ -31,7 +29,7 @@ void coefficients_portable(const PairFrictionTerm& term, const std::uint64_t* id
   alignas(64) double theta[kChunk];
   for (int c = 0; c < count; c += kChunk) {
     const int n = std::min(kChunk, count - c);
-    ordered_ids(id_pair + c, n, low, high);
+    split_ids(id_pair + c, n, low, high);
     pair_noise_batch(term.noise, low, high, term.step, n, theta);
     for (int m = 0; m < n; ++m) {
       const double s = 1.0 / std::sqrt(r2[c + m]);
@@ -65,7 +63,7 @@ __attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
   for (int c = 0; c < count; c += kChunk) {
     const int n = std::min(kChunk, count - c);
     if (!draw_here) {
-      ordered_ids(id_pair + c, n, low, high);
+      split_ids(id_pair + c, n, low, high);
       pair_noise_batch(term.noise, low, high, term.step, n, theta);
     }
     for (int m = 0; m < n; m += 8 * kGroups) {
@@ -78,11 +76,11 @@ __attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
       if (draw_here) {
         philox::Counters8<kGroups> x;
         for (int g = 0; g < kGroups; ++g) {
+          // The counter's first two words are the low and high halves; the
+          // upper half of lane word 0 is ignored by Philox's multiply.
           const __m512i ids = _mm512_maskz_loadu_epi64(mask[g], id_pair + c + m + 8 * g);
-          const __m512i a = _mm512_and_si512(ids, low_half);
-          const __m512i b = _mm512_srli_epi64(ids, 32);
-          x.c[0][g] = _mm512_min_epu64(a, b);
-          x.c[1][g] = _mm512_max_epu64(a, b);
+          x.c[0][g] = ids;
+          x.c[1][g] = _mm512_srli_epi64(ids, 32);
         }
         philox::philox_avx512<kGroups, false>(keys, step0, step1, x);
         for (int g = 0; g < kGroups; ++g) {

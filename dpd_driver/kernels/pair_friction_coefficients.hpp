@@ -24,8 +24,8 @@
 
 namespace pbms::dpd {
 
-// id_pair[m]: the pair's two 32-bit global ids, one in each half, in either
-// order; r2[m] > 0: its squared separation (Å²); force_over_r[m]: its
+// id_pair[m]: the pair's two 32-bit global ids, the lower in the low half
+// (as HalfNeighbourList::pair_ids keeps them); r2[m] > 0: its squared separation (Å²); force_over_r[m]: its
 // conservative force over r (eV/Å²). Any count ≥ 0.
 void pair_friction_coefficients(const PairFrictionTerm& term, const std::uint64_t* id_pair,
                                 const double* r2, const double* force_over_r, int count,

@@ -165,7 +165,7 @@ TEST(DpdPairFriction, BatchCoefficientsMatchTheFormulaOnEveryPath) {
   for (int m = 0; m < kCount; ++m) {
     const std::uint64_t a = 1 + 7919u * static_cast<std::uint64_t>(m);
     const std::uint64_t b = 40000000u - 104729u * static_cast<std::uint64_t>(m);
-    id_pair[m] = m % 2 == 0 ? (a << 32 | b) : (b << 32 | a);  // either order
+    id_pair[m] = std::max(a, b) << 32 | std::min(a, b);
     // r from 4 to 11 Å: some pairs beyond the 10 Å cutoff, where w = 0.
     const double r = 4.0 + 7.0 * m / kCount;
     r2[m] = r * r;
