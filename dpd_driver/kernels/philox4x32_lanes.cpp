@@ -15,24 +15,20 @@ using Wide = std::uint64_t;
 using philox::kMultiplier0;
 using philox::kMultiplier1;
 using philox::kRounds;
-using philox::kWeyl0;
-using philox::kWeyl1;
 using philox::RoundKeys;
 
 void lanes_portable(const Word key[2], const Word* low, const Word* high, Word step0, Word step1,
                     int count, PhiloxLaneOutput out) {
+  const RoundKeys keys(key);
   for (int m = 0; m < count; ++m) {
     Word c0 = low[m], c1 = high[m], c2 = step0, c3 = step1;
-    Word k0 = key[0], k1 = key[1];
     for (int round = 0; round < kRounds; ++round) {
       const Wide p0 = Wide{kMultiplier0} * c0;
       const Wide p1 = Wide{kMultiplier1} * c2;
-      c0 = static_cast<Word>(p1 >> 32) ^ c1 ^ k0;
+      c0 = static_cast<Word>(p1 >> 32) ^ c1 ^ keys.k0[round];
       c1 = static_cast<Word>(p1);
-      c2 = static_cast<Word>(p0 >> 32) ^ c3 ^ k1;
+      c2 = static_cast<Word>(p0 >> 32) ^ c3 ^ keys.k1[round];
       c3 = static_cast<Word>(p0);
-      k0 += kWeyl0;
-      k1 += kWeyl1;
     }
     out.word[0][m] = c0;
     out.word[1][m] = c1;
