@@ -2,15 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include <fmt/format.h>
 
 #include "pbms/error.hpp"
 #include "pbms/grid/shape_function_linear.hpp"
+#include "pbms/simd/lanes8_transpose.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
 namespace {
+
+using Lanes4 = double __attribute__((vector_size(32), may_alias));
+[[gnu::always_inline]] inline Lanes4 low_half(const Lanes8& l) {
+  return __builtin_shufflevector(l, l, 0, 1, 2, 3);
+}
+[[gnu::always_inline]] inline void set_low_half(NodeLanes& r, const Lanes4& l) {
+  __builtin_memcpy(&r, &l, sizeof l);
+}
 
 inline Vec3 operator*(double s, const Vec3& a) {
   return {s * a[0], s * a[1], s * a[2]};
@@ -160,7 +170,13 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
   const bool external = body || !bc.loads.empty();
   const bool rigid = !bc.point_velocities.empty();
-  for (size_t p = 0; p < points.size(); ++p) {
+  size_t first = 0;
+  if constexpr (std::is_same_v<Eval, LinearEval>) {
+    if (force && !external && !rigid && !dual) {
+      for (; first + 8 <= points.size(); first += 8) scatter_lanes(eval.kernel, points, first);
+    }
+  }
+  for (size_t p = first; p < points.size(); ++p) {
     decltype(auto) s = locate(eval, points, p);
     grid::keep_weights_in_memory(s);
     const double m = points.mass[p];
@@ -210,6 +226,55 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
         const double wd = (1.0 - al) * V * s.N[qq];
         for (size_t c = 0; c < 6; ++c) S[c] += wd * t[c];
       }
+    }
+  }
+}
+
+// The scalar loop's records and sums, in its order, for eight points: the
+// stencil, volume and stress products run across lanes and are transposed
+// into per-point records and per-point corner weights (read as broadcasts).
+void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
+                              const MaterialPoints& points, size_t p) {
+  Lanes8 x[3];
+  simd::deinterleave3(&points.x[p], x);
+  check_inside_lanes(points, p, x);
+  grid::LinearStencilLanes s;
+  kernel(x, s);
+  // [0]: N, [1..3]: its gradient; then [.][k][q] for point k, corner q.
+  Lanes8 wt[4][8];
+  for (int q = 0; q < 8; ++q) {
+    Lanes8 g[3];
+    s.dN(q, g);
+    wt[0][q] = s.N(q);
+    for (int a = 0; a < 3; ++a) wt[1 + a][q] = g[a];
+  }
+  for (auto& t : wt) simd::transpose8(t);
+  asm("" : "+m"(wt));  // broadcast loads, as grid::keep_weights_in_memory
+  Lanes8 m, v0, v[3], F[9], t[9];
+  __builtin_memcpy(&m, &points.mass[p], sizeof m);
+  __builtin_memcpy(&v0, &points.volume0[p], sizeof v0);
+  simd::deinterleave3(&points.v[p], v);
+  simd::load_records9(points.F[p].data(), F);
+  simd::load_records9(points.state[p].stress.voigt.data(), t);
+  // Eigen's 3 x 3 determinant (F column by column: F(r, c) is F[3 c + r]).
+  const Lanes8 det = F[0] * (F[4] * F[8] - F[7] * F[5]) - F[3] * (F[1] * F[8] - F[7] * F[2]) +
+                     F[6] * (F[1] * F[5] - F[4] * F[2]);
+  const Lanes8 V = v0 * det * opt_.units.stress_volume_to_energy;
+  const Lanes8 w = -(1.0 * V);
+  const Lanes8 z{};
+  Lanes8 pn[8] = {m, m * v[0], m * v[1], m * v[2], z, z, z, z};
+  Lanes8 gx[8] = {z, z, z, z, w * t[0], w * t[5], w * t[4], z};
+  Lanes8 gy[8] = {z, z, z, z, w * t[5], w * t[1], w * t[3], z};
+  Lanes8 gz[8] = {z, z, z, z, w * t[4], w * t[3], w * t[2], z};
+  simd::transpose8(pn);
+  simd::transpose8(gx);
+  simd::transpose8(gy);
+  simd::transpose8(gz);
+  for (size_t k = 0; k < 8; ++k) {
+    NodeLanes* cell = sums_.data() + s.base[k];
+    for (int q = 0; q < 8; ++q) {
+      s.corner(cell, q)->lanes +=
+          wt[0][k][q] * pn[k] + wt[1][k][q] * gx[k] + wt[2][k][q] * gy[k] + wt[3][k][q] * gz[k];
     }
   }
 }
@@ -328,6 +393,98 @@ template <class Stencil>
   }
 }
 
+void MpmSolver::check_inside_lanes(const MaterialPoints& points, size_t p,
+                                   const Lanes8 (&x)[3]) const {
+  const auto& lo = local_.origin();
+  const auto& hi = local_.upper();
+  using Int8 = std::int64_t __attribute__((vector_size(64)));
+  Int8 in = (x[0] >= lo[0]) & (x[0] <= hi[0]);
+  in &= (x[1] >= lo[1]) & (x[1] <= hi[1]);
+  in &= (x[2] >= lo[2]) & (x[2] <= hi[2]);
+  // All eight lanes set, by halving the vector three times.
+  in &= __builtin_shufflevector(in, in, 4, 5, 6, 7, 0, 1, 2, 3);
+  in &= __builtin_shufflevector(in, in, 2, 3, 0, 1, 2, 3, 0, 1);
+  in &= __builtin_shufflevector(in, in, 1, 0, 1, 0, 1, 0, 1, 0);
+  if (in[0] == 0) [[unlikely]] {
+    grid::ShapeStencil unused;
+    for (size_t k = 0; k < 8; ++k) evaluate(points, p + k, unused);  // throws at the first
+  }
+}
+
+// The same sums as point_kinematics with the linear stencil, in the same
+// order, point k of the eight in lane k: node q's records for the eight
+// points are transposed into one register per field, so that each term of
+// L is one multiply-add for all eight.
+void MpmSolver::point_kinematics_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
+                                       const MaterialPoints& points, size_t p, MaterialBlock& b,
+                                       size_t i, Vec3* carried) const {
+  Lanes8 x[3];
+  simd::deinterleave3(&points.x[p], x);
+  check_inside_lanes(points, p, x);
+  grid::LinearStencilLanes s;
+  kernel(x, s);
+  Lanes8 L[9]{}, at[3]{};
+  const NodeLanes* kin = kin_.data();
+  for (int q = 0; q < 8; ++q) {
+    Lanes8 r[8];
+    for (size_t k = 0; k < 8; ++k) r[k] = s.corner(kin + s.base[k], q)->lanes;
+    simd::transpose8(r);
+    const Lanes8 N = s.N(q);
+    Lanes8 g[3];
+    s.dN(q, g);
+    for (int a = 0; a < 3; ++a) {
+      for (int c = 0; c < 3; ++c) L[3 * a + c] += g[c] * r[a];
+      at[a] += N * r[3 + a];
+    }
+  }
+  for (int k = 0; k < 9; ++k) __builtin_memcpy(&b.L[k][i], &L[k], sizeof(Lanes8));
+  simd::interleave3(at, carried);
+}
+
+// The scalar G2P loop's arithmetic, in its order, for eight points: their
+// corner weights come from one evaluation across lanes, transposed so that
+// each point's node loop reads its weights as broadcasts; the velocity
+// update runs across lanes.
+void MpmSolver::grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
+                                     MaterialPoints& points, size_t p, double dt) {
+  Lanes8 x[3];
+  simd::deinterleave3(&points.x[p], x);
+  check_inside_lanes(points, p, x);
+  grid::LinearStencilLanes s;
+  kernel(x, s);
+  Lanes8 w[8];  // w[k][q]: point k's weight at corner q
+  for (int q = 0; q < 8; ++q) w[q] = s.N(q);
+  simd::transpose8(w);
+  asm("" : "+m"(w));  // broadcast loads, as grid::keep_weights_in_memory
+  const NodeLanes* kin = kin_.data();
+  Lanes8 at[8];  // per point: lanes 0-2 acceleration, 3-5 velocity
+  for (size_t k = 0; k < 8; ++k) {
+    const NodeLanes* cell = kin + s.base[k];
+    Lanes8 a{};
+    for (int q = 0; q < 8; ++q) a += w[k][q] * s.corner(cell, q)->lanes;
+    at[k] = a;
+  }
+  simd::transpose8(at);
+  Lanes8 v[3];
+  simd::deinterleave3(&points.v[p], v);
+  const double flip = opt_.flip;
+  for (int a = 0; a < 3; ++a) v[a] = flip * (v[a] + dt * at[a]) + (1.0 - flip) * at[a + 3];
+  simd::interleave3(v, &points.v[p]);
+  Lanes8 m;
+  __builtin_memcpy(&m, &points.mass[p], sizeof m);
+  Lanes8 pm[8] = {Lanes8{}, m * v[0], m * v[1], m * v[2], Lanes8{}, Lanes8{}, Lanes8{}, Lanes8{}};
+  simd::transpose8(pm);
+  // Only the mass-and-momentum half of each record changes: half the stores.
+  for (size_t k = 0; k < 8; ++k) {
+    const Lanes4 pm4 = low_half(pm[k]);
+    NodeLanes* cell = sums_.data() + s.base[k];
+    for (int q = 0; q < 8; ++q) {
+      NodeLanes* r = s.corner(cell, q);
+      set_low_half(*r, low_half(r->lanes) + w[k][q] * pm4);
+    }
+  }
+}
+
 namespace {
 
 // det of a 3x3 matrix held row by row in nine scalars (Eigen's cofactor
@@ -359,7 +516,26 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
   constexpr size_t K = MaterialBlock::kSize;
   alignas(64) double F[9][K];
   alignas(64) double J[K], v0[K], power_before[K], work_increment[K];
-  for (size_t i = 0; i < m; ++i) {
+  static_assert(sizeof(Mat3) == 9 * sizeof(double));
+  static_assert(sizeof(MaterialPointState) == 9 * sizeof(double));
+  // Eight points at a time by transposes (F is stored column by column),
+  // the rest point by point.
+  const size_t m8 = m - m % 8;
+  for (size_t i = 0; i < m8; i += 8) {
+    const size_t p = p0 + i;
+    Lanes8 c[9];
+    simd::load_records9(points.F[p].data(), c);
+    for (int r = 0; r < 3; ++r) {
+      for (int col = 0; col < 3; ++col) __builtin_memcpy(&F[3 * r + col][i], &c[3 * col + r], 64);
+    }
+    simd::load_records9(points.state[p].stress.voigt.data(), c);
+    for (int f = 0; f < 6; ++f) __builtin_memcpy(&b.stress[f][i], &c[f], 64);
+    __builtin_memcpy(&b.plastic_strain[i], &c[7], 64);
+    __builtin_memcpy(&b.internal_energy[i], &c[8], 64);
+    __builtin_memcpy(&b.density[i], &points.mass[p], 64);
+    __builtin_memcpy(&v0[i], &points.volume0[p], 64);
+  }
+  for (size_t i = m8; i < m; ++i) {
     const size_t p = p0 + i;
     const Mat3& f = points.F[p];
     for (int r = 0; r < 3; ++r) {
@@ -403,7 +579,25 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     const double power_after = stress_power_density(b, i) * v0[i] * J[i];
     work_increment[i] = 0.5 * dt * (power_before[i] + power_after) * kv;
   }
-  for (size_t i = 0; i < m; ++i) {
+  for (size_t i = 0; i < m8; i += 8) {
+    const size_t p = p0 + i;
+    Lanes8 c[9];
+    for (int r = 0; r < 3; ++r) {
+      for (int col = 0; col < 3; ++col) __builtin_memcpy(&c[3 * col + r], &F[3 * r + col][i], 64);
+    }
+    simd::store_records9(c, points.F[p].data());
+    for (int f = 0; f < 6; ++f) __builtin_memcpy(&c[f], &b.stress[f][i], 64);
+    __builtin_memcpy(&c[6], &b.density[i], 64);
+    __builtin_memcpy(&c[7], &b.plastic_strain[i], 64);
+    __builtin_memcpy(&c[8], &b.internal_energy[i], 64);
+    simd::store_records9(c, points.state[p].stress.voigt.data());
+    Lanes8 w, dw;
+    __builtin_memcpy(&w, &points.work[p], 64);
+    __builtin_memcpy(&dw, &work_increment[i], 64);
+    w += dw;
+    __builtin_memcpy(&points.work[p], &w, 64);
+  }
+  for (size_t i = m8; i < m; ++i) {
     const size_t p = p0 + i;
     Mat3& f = points.F[p];
     for (int r = 0; r < 3; ++r) {
@@ -585,7 +779,13 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   const Lanes8 keep_all_but_momentum = {1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
   for (auto& r : sums_) r.lanes *= keep_all_but_momentum;
   const double flip = opt_.flip;
-  for (size_t p = 0; p < n; ++p) {
+  size_t first = 0;
+  if constexpr (std::is_same_v<Eval, LinearEval>) {
+    if (last && !prescribed) {
+      for (; first + 8 <= n; first += 8) grid_to_points_lanes(eval.kernel, points, first, dt);
+    }
+  }
+  for (size_t p = first; p < n; ++p) {
     const auto& s = locate(eval, points, p);
     Lanes8 k{};  // lanes 0-2 acceleration, 3-5 velocity
     for (int q = 0; q < s.count; ++q) {
@@ -634,7 +834,14 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   std::array<Vec3, kBlock> vb;
   for (size_t p0 = 0; p0 < n; p0 += kBlock) {
     const size_t m = std::min(kBlock, n - p0);
-    for (size_t i = 0; i < m; ++i) {
+    size_t i = 0;
+    if constexpr (std::is_same_v<Eval, LinearEval>) {
+      if (!opt_.ddmp) {
+        for (; i + 8 <= m; i += 8)
+          point_kinematics_lanes(eval.kernel, points, p0 + i, *block, i, &vb[i]);
+      }
+    }
+    for (; i < m; ++i) {
       decltype(auto) s = locate(eval, points, p0 + i);
       grid::keep_weights_in_memory(s);
       point_kinematics(points, p0 + i, s, L, vb[i]);

@@ -18,6 +18,7 @@
 #include "pbms/grid/ddmp_gradient.hpp"
 #include "pbms/grid/regular_grid.hpp"
 #include "pbms/grid/shape_function.hpp"
+#include "pbms/grid/shape_function_linear.hpp"
 
 namespace pbms::mpm {
 
@@ -135,6 +136,24 @@ class MpmSolver {
   template <class Stencil>
   void point_kinematics(const MaterialPoints& points, size_t p, const Stencil& s, Mat3& L,
                         Vec3& carried) const;
+  // point_kinematics for the eight points p .. p + 7 at once, one per SIMD
+  // lane, with the linear stencil and plain gradients: L into columns
+  // i .. i + 7 of b, the carried field into carried[0 .. 7].
+  void point_kinematics_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
+                              const MaterialPoints& points, size_t p, MaterialBlock& b, size_t i,
+                              Vec3* carried) const;
+  // scatter() with forces for the eight points p .. p + 7 (linear stencil;
+  // no external loads, rigid groups or dual-domain part).
+  void scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points,
+                     size_t p);
+  // The grid-to-point pass of update-stress-last for the eight points
+  // p .. p + 7 (linear stencil, no prescribed velocities): the velocity
+  // update, then the remap of their momenta into sums_.
+  void grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& kernel, MaterialPoints& points,
+                            size_t p, double dt);
+  // Throws, naming the first of points p .. p + 7 outside this solver's
+  // box, if one is; x holds their coordinates across lanes.
+  void check_inside_lanes(const MaterialPoints& points, size_t p, const Lanes8 (&x)[3]) const;
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
   void build_dual(const MaterialPoints& points);
   void add_dual_force();

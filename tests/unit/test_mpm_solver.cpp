@@ -107,7 +107,9 @@ TEST(MpmSolver, PatchTestHomogeneousStretchWithDdmp) {
 // functions behind the general interface must give the same trajectory, up
 // to the order of round-off, with every optional term of a step switched on:
 // both stress updates, a FLIP/PIC blend, body force, a point load, a rigid
-// group and a node constraint.
+// group and a node constraint. Without the loads and the rigid group the
+// linear passes run eight points at a time across SIMD lanes; a point count
+// that is not a multiple of eight leaves a tail for the point-by-point code.
 TEST(MpmSolver, InlinedLinearPathMatchesTheGeneralStencilPath) {
   struct LinearBehindTheInterface final : grid::ShapeFunction {
     void evaluate(const grid::RegularGrid& g, const std::array<double, 3>& x,
@@ -117,48 +119,53 @@ TEST(MpmSolver, InlinedLinearPathMatchesTheGeneralStencilPath) {
     int support_nodes() const override { return 8; }
     std::string_view name() const override { return "linear-behind-the-interface"; }
   };
-  for (const auto update : {StressUpdate::kLast, StressUpdate::kFirst}) {
-    const double E = 200.0, nu = 0.3, rho = 1.0;
-    grid::RegularGrid g({0, 0, 0}, 1.0, {8, 7, 6});
-    SolverOptions opt;
-    opt.stress_update = update;
-    opt.flip = 0.9;
-    MpmSolver inlined(g, grid::ShapeFunctionRegistry::create("linear"), elastic(E, nu), opt);
-    MpmSolver general(g, std::make_unique<LinearBehindTheInterface>(), elastic(E, nu), opt);
-    MaterialPoints a;
-    fill(a, g, {1, 1, 1}, {7, 6, 5}, 2, rho);
-    for (size_t p = 0; p < a.size(); ++p) {
-      const auto& x = a.x[p];
-      a.v[p] = {0.3 * std::sin(0.7 * x[1]), 0.2 * std::cos(0.5 * x[0] + x[2]), 0.1 * x[0]};
-      a.groups[p] = (x[0] < 2 ? 1u : 0u) | (x[2] > 4 ? 2u : 0u);
-    }
-    MaterialPoints b = a;
-    BoundaryConditions bc;
-    bc.body_acceleration = {0.0, 0.0, -0.05};
-    bc.loads.push_back({2u, {0.01, 0.0, 0.02}});
-    bc.point_velocities.push_back({1u, {true, false, false}, {0.05, 0.0, 0.0}});
-    bc.nodes.push_back({{{0, 0, 0}, {9, 8, 1}}, {false, false, true}, {0, 0, 0}});
-    const double dt = 0.2 * inlined.stable_time_step(a);
-    for (int step = 0; step < 40; ++step) {
-      inlined.step(a, bc, dt);
-      general.step(b, bc, dt);
-    }
-    double dx = 0, dv = 0, ds = 0, smax = 0;
-    for (size_t p = 0; p < a.size(); ++p) {
-      for (size_t c = 0; c < 3; ++c) {
-        dx = std::max(dx, std::abs(a.x[p][c] - b.x[p][c]));
-        dv = std::max(dv, std::abs(a.v[p][c] - b.v[p][c]));
+  for (const bool loads : {true, false})
+    for (const auto update : {StressUpdate::kLast, StressUpdate::kFirst}) {
+      const double E = 200.0, nu = 0.3, rho = 1.0;
+      grid::RegularGrid g({0, 0, 0}, 1.0, {8, 7, 6});
+      SolverOptions opt;
+      opt.stress_update = update;
+      opt.flip = 0.9;
+      MpmSolver inlined(g, grid::ShapeFunctionRegistry::create("linear"), elastic(E, nu), opt);
+      MpmSolver general(g, std::make_unique<LinearBehindTheInterface>(), elastic(E, nu), opt);
+      MaterialPoints a;
+      fill(a, g, {1, 1, 1}, {7, 6, 5}, 2, rho);
+      for (size_t p = 0; p < a.size(); ++p) {
+        const auto& x = a.x[p];
+        a.v[p] = {0.3 * std::sin(0.7 * x[1]), 0.2 * std::cos(0.5 * x[0] + x[2]), 0.1 * x[0]};
+        a.groups[p] = (x[0] < 2 ? 1u : 0u) | (x[2] > 4 ? 2u : 0u);
       }
-      for (int c = 0; c < 6; ++c) {
-        ds = std::max(ds, std::abs(a.state[p].stress[c] - b.state[p].stress[c]));
-        smax = std::max(smax, std::abs(a.state[p].stress[c]));
+      for (const size_t p : {700, 333, 5}) a.erase(p);
+      ASSERT_NE(a.size() % 8, 0u);
+      MaterialPoints b = a;
+      BoundaryConditions bc;
+      if (loads) {
+        bc.body_acceleration = {0.0, 0.0, -0.05};
+        bc.loads.push_back({2u, {0.01, 0.0, 0.02}});
+        bc.point_velocities.push_back({1u, {true, false, false}, {0.05, 0.0, 0.0}});
       }
+      bc.nodes.push_back({{{0, 0, 0}, {9, 8, 1}}, {false, false, true}, {0, 0, 0}});
+      const double dt = 0.2 * inlined.stable_time_step(a);
+      for (int step = 0; step < 40; ++step) {
+        inlined.step(a, bc, dt);
+        general.step(b, bc, dt);
+      }
+      double dx = 0, dv = 0, ds = 0, smax = 0;
+      for (size_t p = 0; p < a.size(); ++p) {
+        for (size_t c = 0; c < 3; ++c) {
+          dx = std::max(dx, std::abs(a.x[p][c] - b.x[p][c]));
+          dv = std::max(dv, std::abs(a.v[p][c] - b.v[p][c]));
+        }
+        for (int c = 0; c < 6; ++c) {
+          ds = std::max(ds, std::abs(a.state[p].stress[c] - b.state[p].stress[c]));
+          smax = std::max(smax, std::abs(a.state[p].stress[c]));
+        }
+      }
+      EXPECT_GT(smax, 1e-2);  // the run did deform the body
+      EXPECT_LT(dx, 1e-12);
+      EXPECT_LT(dv, 1e-12);
+      EXPECT_LT(ds, 1e-11 * smax);
     }
-    EXPECT_GT(smax, 1e-2);  // the run did deform the body
-    EXPECT_LT(dx, 1e-12);
-    EXPECT_LT(dv, 1e-12);
-    EXPECT_LT(ds, 1e-11 * smax);
-  }
 }
 
 // First axial mode of a bar fixed at x = 0 and free at x = L: the period is

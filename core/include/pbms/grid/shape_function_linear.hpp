@@ -43,6 +43,32 @@ inline void keep_weights_in_memory(LinearStencil& s) {
 }
 inline void keep_weights_in_memory(const ShapeStencil&) {}
 
+// The stencils of eight points at once, point k in lane k, for passes that
+// run across points. Per axis d, w[d][0] is the lower corner's factor
+// (1 - xi) and w[d][1] the upper's (xi); corner q = a + 2b + 4c takes
+// w[0][a] w[1][b] w[2][c], the same products, in the same order, as
+// LinearStencil's lane q, so both layouts give identical weights.
+struct LinearStencilLanes {
+  alignas(64) std::array<std::int64_t, 8> base{};  // each point's lower corner node
+  std::int64_t stride_y = 0, stride_z = 0;         // node index steps along y and z
+  Lanes8 w[3][2]{};
+  double slope[3][2]{};  // d w[d][c] / d x_d: -1/h, +1/h
+
+  // Corner q of a cell whose lower corner is `cell`, in an array of nodes.
+  template <class T>
+  [[nodiscard]] T* corner(T* cell, int q) const {
+    return cell + (q & 1) + ((q >> 1) & 1) * stride_y + (q >> 2) * stride_z;
+  }
+  [[nodiscard]] Lanes8 N(int q) const { return w[0][q & 1] * w[1][(q >> 1) & 1] * w[2][q >> 2]; }
+  // The gradient of corner q's weight, one register per axis.
+  void dN(int q, Lanes8 (&g)[3]) const {
+    const int a = q & 1, b = (q >> 1) & 1, c = q >> 2;
+    g[0] = slope[0][a] * w[1][b] * w[2][c];
+    g[1] = w[0][a] * slope[1][b] * w[2][c];
+    g[2] = w[0][a] * w[1][b] * slope[2][c];
+  }
+};
+
 class ShapeFunctionLinear final : public ShapeFunction {
  public:
   // The evaluation for one grid with the grid's constants taken once: an
@@ -91,6 +117,32 @@ class ShapeFunctionLinear final : public ShapeFunction {
       out.dNx = slope_[0] * w[1] * w[2];
       out.dNy = w[0] * slope_[1] * w[2];
       out.dNz = w[0] * w[1] * slope_[2];
+    }
+
+    // Eight points at once, coordinate d of point k in x[d][k]; each lane's
+    // arithmetic is the single-point operator's.
+    [[gnu::always_inline]] void operator()(const Lanes8 (&x)[3], LinearStencilLanes& out) const {
+      using Int8 = std::int64_t __attribute__((vector_size(64)));
+      Int8 base{};
+      const std::int64_t stride[3] = {1, stride_y_, stride_z_};
+      for (int d = 0; d < 3; ++d) {
+        const Lanes8 scaled = (x[d] - origin4_[d]) * inv_h4_[d];
+        Int8 cell = __builtin_convertvector(scaled, Int8);  // truncation, as static_cast
+        cell = cell < 0 ? Int8{} : cell;
+        const std::int64_t last = last_cell_[static_cast<std::size_t>(d)];
+        cell = cell > last ? Int8{} + last : cell;
+        Lanes8 xi = scaled - __builtin_convertvector(cell, Lanes8);
+        xi = xi < 0.0 ? Lanes8{} : xi;
+        xi = xi > 1.0 ? Lanes8{} + 1.0 : xi;
+        out.w[d][0] = 1.0 - xi;
+        out.w[d][1] = xi;
+        out.slope[d][0] = -inv_h4_[d];
+        out.slope[d][1] = inv_h4_[d];
+        base += cell * stride[d];
+      }
+      __builtin_memcpy(out.base.data(), &base, sizeof base);
+      out.stride_y = stride_y_;
+      out.stride_z = stride_z_;
     }
 
     void operator()(const std::array<double, 3>& x, ShapeStencil& out) const {
