@@ -188,8 +188,8 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   const bool rigid = !bc.point_velocities.empty();
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
-    if (force && !external && !rigid && !dual) {
-      for (; first + 8 <= points.size(); first += 8) scatter_lanes(eval.kernel, points, first);
+    if (force && !dual) {
+      for (; first + 8 <= points.size(); first += 8) scatter_lanes(eval.kernel, points, bc, first);
     }
   }
   for (size_t p = first; p < points.size(); ++p) {
@@ -250,7 +250,8 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
 // stencil, volume and stress products run across lanes and are transposed
 // into per-point records and per-point corner weights (read as broadcasts).
 void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
-                              const MaterialPoints& points, size_t p) {
+                              const MaterialPoints& points, const BoundaryConditions& bc,
+                              size_t p) {
   Lanes8 x[3];
   simd::deinterleave3(&points.x[p], x);
   check_inside_lanes(points, p, x);
@@ -279,6 +280,17 @@ void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
   const Lanes8 w = -(1.0 * V);
   const Lanes8 z{};
   Lanes8 pn[8] = {m, m * v[0], m * v[1], m * v[2], z, z, z, z};
+  const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
+  if (body || !bc.loads.empty()) [[unlikely]] {
+    for (size_t k = 0; k < 8; ++k) {
+      Vec3 fext{0.0, 0.0, 0.0};
+      if (body) fext = (m[k] / opt_.units.force_per_mass_to_accel) * bc.body_acceleration;
+      for (const auto& load : bc.loads) {
+        if (points.in_group(p + k, load.group_mask)) add_to(fext, load.force_per_point);
+      }
+      for (size_t a = 0; a < 3; ++a) pn[sums::kForce + a][k] = fext[a];
+    }
+  }
   Lanes8 gx[8] = {z, z, z, z, w * t[0], w * t[5], w * t[4], z};
   Lanes8 gy[8] = {z, z, z, z, w * t[5], w * t[1], w * t[3], z};
   Lanes8 gz[8] = {z, z, z, z, w * t[4], w * t[3], w * t[2], z};
@@ -291,6 +303,15 @@ void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
     for (int q = 0; q < 8; ++q) {
       s.corner(cell, q)->lanes +=
           wt[0][k][q] * pn[k] + wt[1][k][q] * gx[k] + wt[2][k][q] * gy[k] + wt[3][k][q] * gz[k];
+    }
+  }
+  for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+    for (size_t k = 0; k < 8; ++k) {
+      if (!points.in_group(p + k, bc.point_velocities[c].group_mask)) continue;
+      for (int q = 0; q < 8; ++q) {
+        const double N = wt[0][k][q];
+        if (N > 0.0) rigid_[c][static_cast<size_t>(s.node(k, q))] += N;
+      }
     }
   }
 }
@@ -464,7 +485,8 @@ void MpmSolver::point_kinematics_lanes(const grid::ShapeFunctionLinear::Kernel& 
 // each point's node loop reads its weights as broadcasts; the velocity
 // update runs across lanes.
 void MpmSolver::grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
-                                     MaterialPoints& points, size_t p, double dt) {
+                                     MaterialPoints& points, const BoundaryConditions& bc, size_t p,
+                                     double dt) {
   Lanes8 x[3];
   simd::deinterleave3(&points.x[p], x);
   check_inside_lanes(points, p, x);
@@ -487,7 +509,25 @@ void MpmSolver::grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& ke
   simd::deinterleave3(&points.v[p], v);
   const double flip = opt_.flip;
   for (int a = 0; a < 3; ++a) v[a] = flip * (v[a] + dt * at[a]) + (1.0 - flip) * at[a + 3];
+  for (const auto& pv : bc.point_velocities) {
+    for (size_t k = 0; k < 8; ++k) {
+      if (!points.in_group(p + k, pv.group_mask)) continue;
+      for (size_t a = 0; a < 3; ++a) {
+        if (pv.axis[a]) v[a][k] = pv.velocity[a];
+      }
+    }
+  }
   simd::interleave3(v, &points.v[p]);
+  if (opt_.stress_update == StressUpdate::kFirst) {
+    // No remap: the points move with the grid velocity (s-8).
+    Vec3 vel[8];
+    simd::interleave3({at[3], at[4], at[5]}, vel);
+    for (size_t k = 0; k < 8; ++k) {
+      hold_prescribed(points, bc, p + k, vel[k]);
+      move_point(points, p + k, vel[k], dt);
+    }
+    return;
+  }
   Lanes8 m;
   __builtin_memcpy(&m, &points.mass[p], sizeof m);
   Lanes8 pm[8] = {Lanes8{}, m * v[0], m * v[1], m * v[2], Lanes8{}, Lanes8{}, Lanes8{}, Lanes8{}};
@@ -799,9 +839,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
   const double flip = opt_.flip;
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
-    if (last && !prescribed) {
-      for (; first + 8 <= n; first += 8) grid_to_points_lanes(eval.kernel, points, first, dt);
-    }
+    for (; first + 8 <= n; first += 8) grid_to_points_lanes(eval.kernel, points, bc, first, dt);
   }
   for (size_t p = first; p < n; ++p) {
     const auto& s = locate(eval, points, p);

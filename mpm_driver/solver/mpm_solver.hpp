@@ -142,15 +142,15 @@ class MpmSolver {
   void point_kinematics_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
                               const MaterialPoints& points, size_t p, MaterialBlock& b, size_t i,
                               Vec3* carried) const;
-  // scatter() with forces for the eight points p .. p + 7 (linear stencil;
-  // no external loads, rigid groups or dual-domain part).
+  // scatter() with forces for the eight points p .. p + 7 (linear stencil,
+  // no dual-domain part).
   void scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points,
-                     size_t p);
-  // The grid-to-point pass of update-stress-last for the eight points
-  // p .. p + 7 (linear stencil, no prescribed velocities): the velocity
-  // update, then the remap of their momenta into sums_.
+                     const BoundaryConditions& bc, size_t p);
+  // The grid-to-point pass for the eight points p .. p + 7 (linear
+  // stencil): the velocity update, then under update-stress-last the remap
+  // of their momenta into sums_, under update-stress-first the move.
   void grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& kernel, MaterialPoints& points,
-                            size_t p, double dt);
+                            const BoundaryConditions& bc, size_t p, double dt);
   // Throws, naming the first of points p .. p + 7 outside this solver's
   // box, if one is; x holds their coordinates across lanes.
   void check_inside_lanes(const MaterialPoints& points, size_t p, const Lanes8 (&x)[3]) const;

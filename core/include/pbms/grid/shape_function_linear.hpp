@@ -54,11 +54,16 @@ struct LinearStencilLanes {
   Lanes8 w[3][2]{};
   double slope[3][2]{};  // d w[d][c] / d x_d: -1/h, +1/h
 
+  [[nodiscard]] std::int64_t corner_offset(int q) const {
+    return (q & 1) + ((q >> 1) & 1) * stride_y + (q >> 2) * stride_z;
+  }
   // Corner q of a cell whose lower corner is `cell`, in an array of nodes.
   template <class T>
   [[nodiscard]] T* corner(T* cell, int q) const {
-    return cell + (q & 1) + ((q >> 1) & 1) * stride_y + (q >> 2) * stride_z;
+    return cell + corner_offset(q);
   }
+  // The node index of point k's corner q.
+  [[nodiscard]] std::int64_t node(std::size_t k, int q) const { return base[k] + corner_offset(q); }
   [[nodiscard]] Lanes8 N(int q) const { return w[0][q & 1] * w[1][(q >> 1) & 1] * w[2][q >> 2]; }
   // The gradient of corner q's weight, one register per axis.
   void dN(int q, Lanes8 (&g)[3]) const {
