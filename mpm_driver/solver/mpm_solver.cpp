@@ -607,9 +607,9 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     double f[9], g[9];
     for (int k = 0; k < 9; ++k) f[k] = F[k][i];
     power_before[i] = stress_power_density(b, i) * v0[i] * det3(f);
-    for (int r = 0; r < 3; ++r) {
+    for (size_t r = 0; r < 3; ++r) {
       const double l0 = b.L[3 * r][i], l1 = b.L[3 * r + 1][i], l2 = b.L[3 * r + 2][i];
-      for (int c = 0; c < 3; ++c)
+      for (size_t c = 0; c < 3; ++c)
         g[3 * r + c] = f[3 * r + c] + dt * (l0 * f[c] + l1 * f[3 + c] + l2 * f[6 + c]);
     }
     for (int k = 0; k < 9; ++k) F[k][i] = g[k];

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "pbms/simd/lanes8.hpp"
 
@@ -70,7 +71,7 @@ namespace pbms::simd {
 // lane.
 [[gnu::always_inline]] inline void load_records9(const double* base, Lanes8 (&c)[9]) {
   Lanes8 r[8];
-  for (int k = 0; k < 8; ++k) __builtin_memcpy(&r[k], base + 9 * k, sizeof(Lanes8));
+  for (std::ptrdiff_t k = 0; k < 8; ++k) __builtin_memcpy(&r[k], base + 9 * k, sizeof(Lanes8));
   transpose8(r);
   for (int f = 0; f < 8; ++f) c[f] = r[f];
   c[8] = Lanes8{base[8], base[17], base[26], base[35], base[44], base[53], base[62], base[71]};
@@ -81,7 +82,7 @@ namespace pbms::simd {
   Lanes8 r[8];
   for (int f = 0; f < 8; ++f) r[f] = c[f];
   transpose8(r);
-  for (int k = 0; k < 8; ++k) __builtin_memcpy(base + 9 * k, &r[k], sizeof(Lanes8));
+  for (std::ptrdiff_t k = 0; k < 8; ++k) __builtin_memcpy(base + 9 * k, &r[k], sizeof(Lanes8));
   for (int k = 0; k < 8; ++k) base[9 * k + 8] = c[8][k];
 }
 
