@@ -252,11 +252,7 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
 void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
                               const MaterialPoints& points, const BoundaryConditions& bc,
                               size_t p) {
-  Lanes8 x[3];
-  simd::deinterleave3(&points.x[p], x);
-  check_inside_lanes(points, p, x);
-  grid::LinearStencilLanes s;
-  kernel(x, s);
+  const grid::LinearStencilLanes s = locate_lanes(kernel, points, p);
   // [0]: N, [1..3]: its gradient; then [.][k][q] for point k, corner q.
   Lanes8 wt[4][8];
   for (int q = 0; q < 8; ++q) {
@@ -430,6 +426,16 @@ template <class Stencil>
   }
 }
 
+[[gnu::always_inline]] inline grid::LinearStencilLanes MpmSolver::locate_lanes(
+    const grid::ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points, size_t p) const {
+  Lanes8 x[3];
+  simd::deinterleave3(&points.x[p], x);
+  check_inside_lanes(points, p, x);
+  grid::LinearStencilLanes s;
+  kernel(x, s);
+  return s;
+}
+
 void MpmSolver::check_inside_lanes(const MaterialPoints& points, size_t p,
                                    const Lanes8 (&x)[3]) const {
   const auto& lo = local_.origin();
@@ -457,11 +463,7 @@ void MpmSolver::point_kinematics_lanes(const grid::ShapeFunctionLinear::Kernel& 
                                        size_t i, Vec3* carried) const {
   // For the stress update of this block, which reads and writes both.
   prefetch_ahead(points.size(), p, points.F, points.state);
-  Lanes8 x[3];
-  simd::deinterleave3(&points.x[p], x);
-  check_inside_lanes(points, p, x);
-  grid::LinearStencilLanes s;
-  kernel(x, s);
+  const grid::LinearStencilLanes s = locate_lanes(kernel, points, p);
   Lanes8 L[9]{}, at[3]{};
   const NodeLanes* kin = kin_.data();
   for (int q = 0; q < 8; ++q) {
@@ -487,11 +489,7 @@ void MpmSolver::point_kinematics_lanes(const grid::ShapeFunctionLinear::Kernel& 
 void MpmSolver::grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
                                      MaterialPoints& points, const BoundaryConditions& bc, size_t p,
                                      double dt) {
-  Lanes8 x[3];
-  simd::deinterleave3(&points.x[p], x);
-  check_inside_lanes(points, p, x);
-  grid::LinearStencilLanes s;
-  kernel(x, s);
+  const grid::LinearStencilLanes s = locate_lanes(kernel, points, p);
   Lanes8 w[8];  // w[k][q]: point k's weight at corner q
   for (int q = 0; q < 8; ++q) w[q] = s.N(q);
   simd::transpose8(w);

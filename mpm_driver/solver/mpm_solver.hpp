@@ -151,6 +151,10 @@ class MpmSolver {
   // of their momenta into sums_, under update-stress-first the move.
   void grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& kernel, MaterialPoints& points,
                             const BoundaryConditions& bc, size_t p, double dt);
+  // The stencils of points p .. p + 7, one per lane (locate() for eight).
+  [[nodiscard]] grid::LinearStencilLanes locate_lanes(
+      const grid::ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points,
+      size_t p) const;
   // Throws, naming the first of points p .. p + 7 outside this solver's
   // box, if one is; x holds their coordinates across lanes.
   void check_inside_lanes(const MaterialPoints& points, size_t p, const Lanes8 (&x)[3]) const;
