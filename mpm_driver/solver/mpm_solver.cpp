@@ -169,6 +169,19 @@ void MpmSolver::sum_shared(int first, int components) {
   }
 }
 
+// Body force plus the loads of the point's groups, eV/Å.
+Vec3 MpmSolver::external_force(const MaterialPoints& points, const BoundaryConditions& bc,
+                               size_t p) const {
+  Vec3 f{0.0, 0.0, 0.0};
+  if (dot(bc.body_acceleration, bc.body_acceleration) > 0.0) {
+    f = (points.mass[p] / opt_.units.force_per_mass_to_accel) * bc.body_acceleration;
+  }
+  for (const auto& load : bc.loads) {
+    if (points.in_group(p, load.group_mask)) add_to(f, load.force_per_point);
+  }
+  return f;
+}
+
 // Mass, momentum and optionally the internal and external forces of every
 // point to its nodes (s-1 to s-4). The forces use the stress the points
 // carry now, which under update-stress-last is the previous step's. A
@@ -182,14 +195,14 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   const bool dual = force && opt_.ddmp;
   if (dual) S_.assign(sums_.size(), {0, 0, 0, 0, 0, 0});
   const double kv = opt_.units.stress_volume_to_energy;
-  const double kf = opt_.units.force_per_mass_to_accel;
   const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
   const bool external = body || !bc.loads.empty();
   const bool rigid = !bc.point_velocities.empty();
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
     if (force && !dual) {
-      for (; first + 8 <= points.size(); first += 8) scatter_lanes(eval.kernel, points, bc, first);
+      for (; first + 8 <= points.size(); first += 8)
+        scatter_lanes(eval.kernel, points, bc, external, first);
     }
   }
   for (size_t p = first; p < points.size(); ++p) {
@@ -202,11 +215,7 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
     double V = 0.0, al = 1.0;
     if (force) {
       if (external) [[unlikely]] {
-        Vec3 fext{0.0, 0.0, 0.0};
-        if (body) fext = (m / kf) * bc.body_acceleration;
-        for (const auto& load : bc.loads) {
-          if (points.in_group(p, load.group_mask)) add_to(fext, load.force_per_point);
-        }
+        const Vec3 fext = external_force(points, bc, p);
         pn[sums::kForce] = fext[0];
         pn[sums::kForce + 1] = fext[1];
         pn[sums::kForce + 2] = fext[2];
@@ -251,7 +260,7 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
 // into per-point records and per-point corner weights (read as broadcasts).
 void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
                               const MaterialPoints& points, const BoundaryConditions& bc,
-                              size_t p) {
+                              bool external, size_t p) {
   const grid::LinearStencilLanes s = locate_lanes(kernel, points, p);
   // [0]: N, [1..3]: its gradient; then [.][k][q] for point k, corner q.
   Lanes8 wt[4][8];
@@ -276,14 +285,9 @@ void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
   const Lanes8 w = -(1.0 * V);
   const Lanes8 z{};
   Lanes8 pn[8] = {m, m * v[0], m * v[1], m * v[2], z, z, z, z};
-  const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
-  if (body || !bc.loads.empty()) [[unlikely]] {
+  if (external) [[unlikely]] {
     for (size_t k = 0; k < 8; ++k) {
-      Vec3 fext{0.0, 0.0, 0.0};
-      if (body) fext = (m[k] / opt_.units.force_per_mass_to_accel) * bc.body_acceleration;
-      for (const auto& load : bc.loads) {
-        if (points.in_group(p + k, load.group_mask)) add_to(fext, load.force_per_point);
-      }
+      const Vec3 fext = external_force(points, bc, p + k);
       for (size_t a = 0; a < 3; ++a) pn[sums::kForce + a][k] = fext[a];
     }
   }
@@ -507,15 +511,11 @@ void MpmSolver::grid_to_points_lanes(const grid::ShapeFunctionLinear::Kernel& ke
   simd::deinterleave3(&points.v[p], v);
   const double flip = opt_.flip;
   for (int a = 0; a < 3; ++a) v[a] = flip * (v[a] + dt * at[a]) + (1.0 - flip) * at[a + 3];
-  for (const auto& pv : bc.point_velocities) {
-    for (size_t k = 0; k < 8; ++k) {
-      if (!points.in_group(p + k, pv.group_mask)) continue;
-      for (size_t a = 0; a < 3; ++a) {
-        if (pv.axis[a]) v[a][k] = pv.velocity[a];
-      }
-    }
-  }
   simd::interleave3(v, &points.v[p]);
+  if (!bc.point_velocities.empty()) [[unlikely]] {
+    for (size_t k = 0; k < 8; ++k) hold_prescribed(points, bc, p + k, points.v[p + k]);
+    simd::deinterleave3(&points.v[p], v);  // the remap takes the held velocities
+  }
   if (opt_.stress_update == StressUpdate::kFirst) {
     // No remap: the points move with the grid velocity (s-8).
     Vec3 vel[8];
@@ -851,16 +851,7 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
       vp[static_cast<size_t>(a)] =
           flip * (vp[static_cast<size_t>(a)] + dt * k[a]) + (1.0 - flip) * k[a + 3];
     }
-    if (prescribed) {
-      for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
-        const auto& pv = bc.point_velocities[c];
-        if (!points.in_group(p, pv.group_mask)) continue;
-        for (size_t a = 0; a < 3; ++a) {
-          if (!pv.axis[a]) continue;
-          vp[a] = pv.velocity[a];
-        }
-      }
-    }
+    if (prescribed) hold_prescribed(points, bc, p, vp);
     if (last) {
       const double m = points.mass[p];
       const Lanes8 pm = {0.0, m * vp[0], m * vp[1], m * vp[2], 0.0, 0.0, 0.0, 0.0};

@@ -145,7 +145,9 @@ class MpmSolver {
   // scatter() with forces for the eight points p .. p + 7 (linear stencil,
   // no dual-domain part).
   void scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points,
-                     const BoundaryConditions& bc, size_t p);
+                     const BoundaryConditions& bc, bool external, size_t p);
+  [[nodiscard]] Vec3 external_force(const MaterialPoints& points, const BoundaryConditions& bc,
+                                    size_t p) const;
   // The grid-to-point pass for the eight points p .. p + 7 (linear
   // stencil): the velocity update, then under update-stress-last the remap
   // of their momenta into sums_, under update-stress-first the move.
