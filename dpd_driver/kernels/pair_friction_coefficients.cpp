@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "kernels/pair_noise.hpp"
-#include "kernels/philox4x32_avx512.hpp"
+#include "kernels/philox_avx512.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -43,12 +43,12 @@ void coefficients_portable(const PairFrictionTerm& term, const std::uint64_t* id
 __attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
     const PairFrictionTerm& term, const std::uint64_t* id_pair, const double* r2,
     const double* force_over_r, int count, double* total_over_r, double* drag) {
-  constexpr int kGroups = 2;  // of 8 pairs per pass, for Philox's latency
+  // Groups of 8 pairs per pass: a Philox2x32 round is one chain of multiply,
+  // shift and xor, so 8 independent chains keep the multiplier busy (2 groups
+  // left the pass latency-bound).
+  constexpr int kGroups = 8;
   const bool draw_here = term.noise.distribution == PairNoiseDistribution::kUniform;
-  const philox::RoundKeys keys(term.noise.key);
-  const auto step_bits = static_cast<std::uint64_t>(term.step);
-  const auto step0 = static_cast<std::uint32_t>(step_bits);
-  const auto step1 = static_cast<std::uint32_t>(step_bits >> 32);
+  const philox::RoundKeys2x32 keys(term.noise.uniform_key(term.step));
   const __m512i low_half = _mm512_set1_epi64(0xffffffffLL);
   const __m512i exponent_one = _mm512_set1_epi64(0x3ff0000000000000LL);
   const __m512d one = _mm512_set1_pd(1.0);
@@ -74,20 +74,20 @@ __attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
       }
       __m512d th[kGroups];
       if (draw_here) {
-        philox::Counters8<kGroups> x;
+        __m512i x[2][kGroups];
         for (int g = 0; g < kGroups; ++g) {
-          // The counter's first two words are the low and high halves; the
-          // upper half of lane word 0 is ignored by Philox's multiply.
+          // The counter's two words are the low and high halves; the upper
+          // half of lane word 0 is ignored by Philox's multiply.
           const __m512i ids = _mm512_maskz_loadu_epi64(mask[g], id_pair + c + m + 8 * g);
-          x.c[0][g] = ids;
-          x.c[1][g] = _mm512_srli_epi64(ids, 32);
+          x[0][g] = ids;
+          x[1][g] = _mm512_srli_epi64(ids, 32);
         }
-        philox::philox_avx512<kGroups, false>(keys, step0, step1, x);
+        philox::philox2x32_avx512(keys, x);
         for (int g = 0; g < kGroups; ++g) {
           // θ = √3 (2u − 1), u = (k + ½) 2^-52 for the top 52 bits k of
           // words 1:0, in the operations of pair_noise.cpp (same bits).
-          const __m512i bits = _mm512_or_si512(_mm512_slli_epi64(x.c[1][g], 32),
-                                               _mm512_and_si512(x.c[0][g], low_half));
+          const __m512i bits =
+              _mm512_or_si512(_mm512_slli_epi64(x[1][g], 32), _mm512_and_si512(x[0][g], low_half));
           const __m512d mantissa =
               _mm512_castsi512_pd(_mm512_or_si512(_mm512_srli_epi64(bits, 12), exponent_one));
           const __m512d u = _mm512_add_pd(_mm512_sub_pd(mantissa, one), _mm512_set1_pd(0x1p-53));

@@ -8,7 +8,7 @@
 //
 // This is the thermostat's whole cost beyond the conservative loop but for
 // the velocities, so it is one pass over the batch: with AVX-512 the noise
-// counters are formed, Philox runs (philox4x32_avx512.hpp) and uniform θ is
+// counters are formed, Philox runs (philox_avx512.hpp) and uniform θ is
 // made in registers, 8 pairs to a register, next to the weights; 1/r is
 // vrsqrt14pd refined by two Newton steps (2^-14 → 2^-28 → 2^-53 relative)
 // instead of a square root and a division, which cost as much as the rest of
@@ -20,7 +20,7 @@
 #include <cstdint>
 
 #include "kernels/dpd_pair_friction.hpp"
-#include "kernels/philox4x32_lanes.hpp"
+#include "kernels/philox_lanes.hpp"
 
 namespace pbms::dpd {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "kernels/philox4x32_lanes.hpp"
+#include "kernels/philox_lanes.hpp"
 #include "pbms/error.hpp"
 
 namespace pbms::dpd {
@@ -173,14 +173,17 @@ void pair_noise_batch(const PairNoise& noise, const std::uint32_t* id_low,
   const auto step_bits = static_cast<Wide>(step);
   const auto step0 = static_cast<Word>(step_bits);
   const auto step1 = static_cast<Word>(step_bits >> 32);
+  const Word uniform_key = noise.uniform_key(step);
   for (int b = 0; b < count; b += kChunk) {
     const int n = std::min(kChunk, count - b);
     const int padded = (n + kLanes - 1) / kLanes * kLanes;
-    philox4x32_lanes(path, noise.key, id_low + b, id_high + b, step0, step1, n, out);
-    for (auto& word : words) std::fill(word + n, word + padded, Word{0});
     if (noise.distribution == PairNoiseDistribution::kGaussian) {
+      philox4x32_lanes(path, noise.key, id_low + b, id_high + b, step0, step1, n, out);
+      for (auto& word : words) std::fill(word + n, word + padded, Word{0});
       gaussian_from_words(words[0], words[1], words[2], words[3], padded, values);
     } else {
+      philox2x32_lanes(path, uniform_key, id_low + b, id_high + b, n, out);
+      for (int k = 0; k < 2; ++k) std::fill(words[k] + n, words[k] + padded, Word{0});
       uniform_from_words(words[0], words[1], padded, values);
     }
     std::copy(values, values + n, theta + b);

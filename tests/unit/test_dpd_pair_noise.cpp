@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "kernels/pair_noise.hpp"
-#include "kernels/philox4x32_lanes.hpp"
+#include "kernels/philox_lanes.hpp"
 #include "pbms/error.hpp"
 
 using pbms::dpd::pair_noise;
@@ -22,41 +22,77 @@ namespace {
 const PairNoise kGaussian(42, PairNoiseDistribution::kGaussian);
 const PairNoise kUniform(42, PairNoiseDistribution::kUniform);
 
-// θ from Random123's own Philox4x32-10 and libm, for the documented layout.
+// θ from Random123's own generators and libm, for the documented layout:
+// uniform θ from Philox2x32-10 keyed by key[0] + step, Gaussian θ from
+// Philox4x32-10 with the step in the counter.
 double reference_theta(const PairNoise& noise, std::uint32_t low, std::uint32_t high,
                        std::uint64_t step) {
+  auto unit = [](std::uint32_t hi, std::uint32_t lo) {
+    const std::uint64_t k = ((std::uint64_t{hi} << 32) | lo) >> 12;
+    return (static_cast<double>(k) + 0.5) * 0x1.0p-52;
+  };
+  if (noise.distribution == PairNoiseDistribution::kUniform) {
+    using Generator = r123::Philox2x32;
+    const Generator::key_type key = {{noise.key[0] + static_cast<std::uint32_t>(step)}};
+    const Generator::ctr_type w = Generator()({{low, high}}, key);
+    return std::sqrt(3.0) * (2 * unit(w[1], w[0]) - 1);
+  }
   using Generator = r123::Philox4x32;
   const Generator::key_type key = {{noise.key[0], noise.key[1]}};
   const Generator::ctr_type counter = {
       {low, high, static_cast<std::uint32_t>(step), static_cast<std::uint32_t>(step >> 32)}};
   const Generator::ctr_type w = Generator()(counter, key);
-  auto unit = [](std::uint32_t hi, std::uint32_t lo) {
-    const std::uint64_t k = ((std::uint64_t{hi} << 32) | lo) >> 12;
-    return (static_cast<double>(k) + 0.5) * 0x1.0p-52;
-  };
-  const double u1 = unit(w[1], w[0]);
-  if (noise.distribution == PairNoiseDistribution::kUniform) return std::sqrt(3.0) * (2 * u1 - 1);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * unit(w[3], w[2]));
+  return std::sqrt(-2.0 * std::log(unit(w[1], w[0]))) *
+         std::cos(2.0 * std::numbers::pi * unit(w[3], w[2]));
+}
+
+// 37 counters: whole vectors of 16 and of 8, and a remainder.
+constexpr int kCounters = 37;
+
+void fill_counters(std::vector<std::uint32_t>& c0, std::vector<std::uint32_t>& c1) {
+  c0.resize(kCounters);
+  c1.resize(kCounters);
+  for (int m = 0; m < kCounters; ++m) {
+    c0[m] = 1000u + 17u * static_cast<std::uint32_t>(m);
+    c1[m] = 0xfffffff0u - 3u * static_cast<std::uint32_t>(m);
+  }
 }
 
 }  // namespace
 
+TEST(Philox2x32Lanes, EveryPathGivesRandom123sBits) {
+  using namespace pbms::dpd;
+  std::vector<std::uint32_t> c0, c1;
+  fill_counters(c0, c1);
+  for (const std::uint32_t key : {0x01234567u, 0xfffffffeu}) {
+    for (const SimdPath path : {SimdPath::kPortable, SimdPath::kAvx2, SimdPath::kAvx512}) {
+      if (!simd_path_supported(path)) continue;
+      std::vector<std::uint32_t> w[2];
+      for (auto& word : w) word.assign(kCounters, 0);
+      philox2x32_lanes(path, key, c0.data(), c1.data(), kCounters,
+                       {{w[0].data(), w[1].data(), nullptr, nullptr}});
+      for (int m = 0; m < kCounters; ++m) {
+        const r123::Philox2x32::ctr_type ref = r123::Philox2x32()({{c0[m], c1[m]}}, {{key}});
+        for (int k = 0; k < 2; ++k) {
+          ASSERT_EQ(w[k][m], ref[k]) << "path " << static_cast<int>(path) << ", lane " << m;
+        }
+      }
+    }
+  }
+}
+
 TEST(Philox4x32Lanes, EveryPathGivesRandom123sBits) {
   using namespace pbms::dpd;
   const std::uint32_t key[2] = {0x01234567u, 0x89abcdefu};
-  // 37 counters: whole vectors of 16 and of 8, and a remainder.
-  std::vector<std::uint32_t> c0(37), c1(37);
-  for (int m = 0; m < 37; ++m) {
-    c0[m] = 1000u + 17u * static_cast<std::uint32_t>(m);
-    c1[m] = 0xfffffff0u - 3u * static_cast<std::uint32_t>(m);
-  }
+  std::vector<std::uint32_t> c0, c1;
+  fill_counters(c0, c1);
   for (const SimdPath path : {SimdPath::kPortable, SimdPath::kAvx2, SimdPath::kAvx512}) {
     if (!simd_path_supported(path)) continue;
     std::vector<std::uint32_t> w[4];
-    for (auto& word : w) word.assign(37, 0);
-    philox4x32_lanes(path, key, c0.data(), c1.data(), 77u, 5u, 37,
+    for (auto& word : w) word.assign(kCounters, 0);
+    philox4x32_lanes(path, key, c0.data(), c1.data(), 77u, 5u, kCounters,
                      {{w[0].data(), w[1].data(), w[2].data(), w[3].data()}});
-    for (int m = 0; m < 37; ++m) {
+    for (int m = 0; m < kCounters; ++m) {
       const r123::Philox4x32::ctr_type ref =
           r123::Philox4x32()({{c0[m], c1[m], 77u, 5u}}, {{key[0], key[1]}});
       for (int k = 0; k < 4; ++k) {
@@ -106,7 +142,9 @@ TEST(DpdPairNoise, BatchIsBitIdenticalToOnePairAtATime) {
 TEST(DpdPairNoise, IsTheSameForBothOrdersOfThePair) {
   for (std::int64_t a = 1; a < 50; ++a) {
     for (std::int64_t b = a + 1; b < 60; b += 7) {
-      EXPECT_EQ(pair_noise(kGaussian, a, b, 1000), pair_noise(kGaussian, b, a, 1000));
+      for (const PairNoise& noise : {kGaussian, kUniform}) {
+        EXPECT_EQ(pair_noise(noise, a, b, 1000), pair_noise(noise, b, a, 1000));
+      }
     }
   }
 }
@@ -121,6 +159,16 @@ TEST(DpdPairNoise, ChangesWithStepSeedAndPair) {
   // Steps past 2^32 use the counter's fourth word.
   EXPECT_NE(pair_noise(kGaussian, 3, 8, 7),
             pair_noise(kGaussian, 3, 8, 7 + (std::int64_t{1} << 32)));
+
+  const double uniform = pair_noise(kUniform, 3, 8, 100);
+  EXPECT_EQ(uniform, pair_noise(kUniform, 3, 8, 100));
+  EXPECT_NE(uniform, pair_noise(kUniform, 3, 8, 101));
+  EXPECT_NE(uniform, pair_noise(PairNoise(43, PairNoiseDistribution::kUniform), 3, 8, 100));
+  EXPECT_NE(uniform, pair_noise(kUniform, 3, 9, 100));
+  EXPECT_NE(uniform, pair_noise(kUniform, 4, 8, 100));
+  // The documented limit of the 32-bit key: uniform θ repeats after 2^32
+  // steps.
+  EXPECT_EQ(uniform, pair_noise(kUniform, 3, 8, 100 + (std::int64_t{1} << 32)));
 }
 
 TEST(DpdPairNoise, HasZeroMeanAndUnitVarianceOverAMillionDraws) {

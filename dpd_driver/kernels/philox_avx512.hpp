@@ -6,7 +6,7 @@
 // its low 32 bits. A round is two multiplies, two shifts and two three-way
 // xors for 8 counters, with no blends to restore 32-bit lane order.
 //
-// Shared by the lane generator (philox4x32_lanes.cpp) and the fused DPD
+// Shared by the lane generator (philox_lanes.cpp) and the fused DPD
 // friction kernel, which keeps the words in registers. Only for code built
 // with (or inside a function targeted at) AVX-512F.
 #pragma once
@@ -23,6 +23,7 @@
 namespace pbms::dpd::philox {
 
 // Salmon et al. 2011, as in Random123's philox.h.
+inline constexpr std::uint32_t kMultiplier2x32 = 0xD256D193u;
 inline constexpr std::uint32_t kMultiplier0 = 0xD2511F53u;
 inline constexpr std::uint32_t kMultiplier1 = 0xCD9E8D57u;
 inline constexpr std::uint32_t kWeyl0 = 0x9E3779B9u;
@@ -41,6 +42,16 @@ struct RoundKeys {
   std::uint32_t k1[kRounds];
 };
 
+// Philox2x32's round keys k + r·Weyl0.
+struct RoundKeys2x32 {
+  explicit RoundKeys2x32(std::uint32_t key) {
+    for (int round = 0; round < kRounds; ++round) {
+      k[round] = key + static_cast<std::uint32_t>(round) * kWeyl0;
+    }
+  }
+  std::uint32_t k[kRounds];
+};
+
 // Four words of G counters (G independent groups of 8, so that one group's
 // multiplies overlap another's dependent shifts and xors).
 template <int G>
@@ -50,10 +61,9 @@ struct Counters8 {
 
 // Philox4x32-10 of the counters {c0, c1, step0, step1}: words 0 and 1 differ
 // by lane, words 2 and 3 (the step) are the same in every lane, so the first
-// round's second product is one scalar multiply. kAllWords false: only
-// words 0 and 1 are wanted, and the last round skips the product that feeds
-// words 2 and 3. On return x holds the output words.
-template <int G, bool kAllWords = true>
+// round's second product is one scalar multiply. On return x holds the
+// output words.
+template <int G>
 [[gnu::always_inline, gnu::target("avx512f")]] inline void philox_avx512(const RoundKeys& keys,
                                                                          std::uint32_t step0,
                                                                          std::uint32_t step1,
@@ -76,16 +86,29 @@ template <int G, bool kAllWords = true>
   for (int round = 1; round < kRounds; ++round) {
     const __m512i k0 = _mm512_set1_epi64(keys.k0[round]);
     const __m512i k1 = _mm512_set1_epi64(keys.k1[round]);
-    const bool last = round == kRounds - 1;
     for (int g = 0; g < G; ++g) {
       const __m512i p1 = _mm512_mul_epu32(x.c[2][g], m1);
-      if (kAllWords || !last) {
-        const __m512i p0 = _mm512_mul_epu32(x.c[0][g], m0);
-        x.c[2][g] = _mm512_ternarylogic_epi64(_mm512_srli_epi64(p0, 32), x.c[3][g], k1, 0x96);
-        x.c[3][g] = p0;
-      }
+      const __m512i p0 = _mm512_mul_epu32(x.c[0][g], m0);
+      x.c[2][g] = _mm512_ternarylogic_epi64(_mm512_srli_epi64(p0, 32), x.c[3][g], k1, 0x96);
+      x.c[3][g] = p0;
       x.c[0][g] = _mm512_ternarylogic_epi64(_mm512_srli_epi64(p1, 32), x.c[1][g], k0, 0x96);
       x.c[1][g] = p1;
+    }
+  }
+}
+
+// Philox2x32-10 of G groups of 8 counters {c[0], c[1]}; on return they hold
+// the output words.
+template <int G>
+[[gnu::always_inline, gnu::target("avx512f")]] inline void philox2x32_avx512(
+    const RoundKeys2x32& keys, __m512i (&c)[2][G]) {
+  const __m512i m = _mm512_set1_epi64(kMultiplier2x32);
+  for (int round = 0; round < kRounds; ++round) {
+    const __m512i k = _mm512_set1_epi64(keys.k[round]);
+    for (int g = 0; g < G; ++g) {
+      const __m512i p = _mm512_mul_epu32(c[0][g], m);
+      c[0][g] = _mm512_ternarylogic_epi64(_mm512_srli_epi64(p, 32), c[1][g], k, 0x96);
+      c[1][g] = p;
     }
   }
 }
