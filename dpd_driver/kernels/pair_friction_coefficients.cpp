@@ -78,7 +78,7 @@ __attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
         for (int g = 0; g < kGroups; ++g) {
           // The counter's two words are the low and high halves; the upper
           // half of lane word 0 is ignored by Philox's multiply.
-          const __m512i ids = _mm512_maskz_loadu_epi64(mask[g], id_pair + c + m + 8 * g);
+          const __m512i ids = _mm512_maskz_loadu_epi64(mask[g], id_pair + (c + m + 8 * g));
           x[0][g] = ids;
           x[1][g] = _mm512_srli_epi64(ids, 32);
         }
@@ -96,7 +96,7 @@ __attribute__((target("avx512f,avx512dq"))) void coefficients_avx512(
         }
       } else {
         for (int g = 0; g < kGroups; ++g) {
-          th[g] = _mm512_maskz_loadu_pd(mask[g], theta + m + 8 * g);
+          th[g] = _mm512_maskz_loadu_pd(mask[g], theta + (m + 8 * g));
         }
       }
       for (int g = 0; g < kGroups; ++g) {
