@@ -1,14 +1,15 @@
-// Philox4x32-10 on 8 counters in AVX-512 registers, one counter per 64-bit
-// lane with its word in the low half: vpmuludq multiplies exactly those
-// halves into the full 64-bit product, a 32-bit shift brings its high word
-// down, and its low word stays where the next round reads it. The upper
-// halves carry leftovers that no multiply reads; whoever uses a word takes
-// its low 32 bits. A round is two multiplies, two shifts and two three-way
-// xors for 8 counters, with no blends to restore 32-bit lane order.
+// Philox4x32-10 and Philox2x32-10 on 8 counters in AVX-512 registers, one
+// counter per 64-bit lane with its word in the low half: vpmuludq multiplies
+// exactly those halves into the full 64-bit product, a 32-bit shift brings
+// its high word down, and its low word stays where the next round reads it.
+// The upper halves carry leftovers that no multiply reads; whoever uses a
+// word takes its low 32 bits. A round for 8 counters is two multiplies, two
+// shifts and two three-way xors (4x32) or one of each (2x32), with no blends
+// to restore 32-bit lane order.
 //
-// Shared by the lane generator (philox_lanes.cpp) and the fused DPD
-// friction kernel, which keeps the words in registers. Only for code built
-// with (or inside a function targeted at) AVX-512F.
+// Shared by the lane generators (philox_lanes.cpp) and the fused DPD
+// friction kernel, which keeps Philox2x32's words in registers. Only for
+// code built with (or inside a function targeted at) AVX-512F.
 #pragma once
 
 #include <cstdint>
