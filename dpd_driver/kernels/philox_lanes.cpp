@@ -43,6 +43,11 @@ void lanes_portable(const Word key[2], const Word* low, const Word* high, Word s
 // 16 words of a counter field widen into two AVX-512 registers (8 into two
 // AVX2 ones), and the low halves of the lanes narrow back into words in
 // counter order (vpmovqd, vpermd).
+// The first min(left, 16) lanes.
+inline __mmask16 lane_mask16(int left) {
+  return left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u);
+}
+
 [[gnu::always_inline, gnu::target("avx512f")]] inline void widen16(__mmask16 mask,
                                                                    const Word* words,
                                                                    __m512i (&lanes)[2]) {
@@ -84,8 +89,7 @@ __attribute__((target("avx512f"))) void lanes_avx512(const Word key[2], const Wo
                                                      int count, PhiloxLaneOutput out) {
   const RoundKeys keys(key);
   for (int b = 0; b < count; b += 16) {
-    const int left = count - b;
-    const __mmask16 mask = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u);
+    const __mmask16 mask = lane_mask16(count - b);
     philox::Counters8<2> x;
     widen16(mask, low + b, x.c[0]);
     widen16(mask, high + b, x.c[1]);
@@ -149,8 +153,7 @@ __attribute__((target("avx512f"))) void lanes2x32_avx512(Word key, const Word* l
                                                          PhiloxLaneOutput out) {
   const RoundKeys2x32 keys(key);
   for (int b = 0; b < count; b += 16) {
-    const int left = count - b;
-    const __mmask16 mask = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u);
+    const __mmask16 mask = lane_mask16(count - b);
     __m512i c[2][2];
     widen16(mask, low + b, c[0]);
     widen16(mask, high + b, c[1]);
