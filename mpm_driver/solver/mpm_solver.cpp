@@ -284,13 +284,17 @@ void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
   const Lanes8 V = v0 * det * opt_.units.stress_volume_to_energy;
   const Lanes8 w = -(1.0 * V);
   const Lanes8 z{};
-  Lanes8 pn[8] = {m, m * v[0], m * v[1], m * v[2], z, z, z, z};
+  Lanes8 fext[3] = {z, z, z};
   if (external) [[unlikely]] {
     for (size_t k = 0; k < 8; ++k) {
-      const Vec3 fext = external_force(points, bc, p + k);
-      for (size_t a = 0; a < 3; ++a) pn[sums::kForce + a][k] = fext[a];
+      const Vec3 f = external_force(points, bc, p + k);
+      for (size_t a = 0; a < 3; ++a) fext[a][k] = f[a];
     }
   }
+  // Built whole rather than patched lane by lane afterwards: patching kept
+  // the array in memory, zeroed by a rep stos per eight points.
+  static_assert(sums::kForce == 4);
+  Lanes8 pn[8] = {m, m * v[0], m * v[1], m * v[2], fext[0], fext[1], fext[2], z};
   Lanes8 gx[8] = {z, z, z, z, w * t[0], w * t[5], w * t[4], z};
   Lanes8 gy[8] = {z, z, z, z, w * t[5], w * t[1], w * t[3], z};
   Lanes8 gz[8] = {z, z, z, z, w * t[4], w * t[3], w * t[2], z};
