@@ -15,18 +15,15 @@
 #include "driver_catalog.hpp"
 #include "pbms/mpi/mpmd.hpp"
 #include "pbms/progress_meter.hpp"
+#include "pbms/units.hpp"
+#include "result_cache.hpp"
 #include "run_record.hpp"
+#include "scheduler.hpp"
 
 namespace pbms::coupler {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct DriverLink {
-  mpi::App app;
-  mpi::Channel channel;
-  protocol::Hello hello;
-};
 
 // Console output that knows whether a progress line is being refreshed in
 // place, so ordinary lines never land on top of it.
@@ -55,6 +52,19 @@ class Console {
   bool open_ = false;
 };
 
+// A table output as a map of its columns, each with its unit.
+YAML::Node table_node(const StageResults& results, const std::string& table) {
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& c : results.columns) {
+    if (c.table != table) continue;
+    out[c.name]["unit"] = c.unit;
+    out[c.name]["values"] = c.data;
+  }
+  return out;
+}
+
+// Replaces every {from: stage.output} with that output of an earlier stage:
+// a scalar in metal units, or a table as a map of columns.
 YAML::Node resolve_references(const YAML::Node& node,
                               const std::map<std::string, StageResults>& done) {
   if (node.IsMap() && node.size() == 1 && node["from"] && node["from"].IsScalar()) {
@@ -62,9 +72,14 @@ YAML::Node resolve_references(const YAML::Node& node,
     const auto dot = target.find('.');
     const std::string stage = target.substr(0, dot), key = target.substr(dot + 1);
     const auto it = done.find(stage);
-    const auto v = it == done.end() ? std::nullopt : it->second.scalar(key);
-    if (!v) throw Error(fmt::format("stage '{}' did not produce '{}'", stage, key));
-    return YAML::Node(*v);
+    if (it != done.end()) {
+      for (const auto& s : it->second.scalars) {
+        if (s.key == key) return YAML::Node(units::to_metal(s.value, s.unit));
+      }
+      YAML::Node table = table_node(it->second, key);
+      if (table.size() > 0) return table;
+    }
+    throw Error(fmt::format("stage '{}' did not produce '{}'", stage, key));
   }
   if (node.IsMap()) {
     YAML::Node out(YAML::NodeType::Map);
@@ -77,6 +92,21 @@ YAML::Node resolve_references(const YAML::Node& node,
     return out;
   }
   return node;
+}
+
+// The materials a stage can see: every one whose references are already
+// resolvable. The validator made sure that a stage's own materials are.
+YAML::Node resolve_materials(const YAML::Node& materials,
+                             const std::map<std::string, StageResults>& done) {
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& kv : materials) {
+    try {
+      out[kv.first] = resolve_references(kv.second, done);
+    } catch (const Error&) {
+      // Refers to a stage that has not run yet: not this stage's material.
+    }
+  }
+  return out;
 }
 
 std::string dump(const YAML::Node& n) {
@@ -93,19 +123,14 @@ class Daemon {
   int run() {
     auto world = mpi::MpmdWorld::join(mpi::Role::kCoupler);
     if (world.local().size() != 1) throw Error("the coupler runs as exactly one process");
-    for (const auto& app : world.drivers()) {
-      links_.push_back({app, mpi::Channel(world.connect(app)), {}});
-    }
-    for (auto& l : links_) {
-      auto m = l.channel.receive();
-      auto* h = std::get_if<protocol::Hello>(&m);
-      if (!h) throw Error("a driver opened with something other than Hello");
-      l.hello = *h;
-    }
+    scheduler_ = Scheduler(Scheduler::connect(world), [this](const protocol::Fatal& f) {
+      fail(f.program, f.rank, f.stage, f.step, f.message);
+    });
 
     // The launcher validated the workflow, but the daemon checks again: it
     // must never act on a config it has not read itself.
-    const auto drivers = discover_drivers(opt_.drivers_dir);
+    drivers_ = discover_drivers(opt_.drivers_dir);
+    const auto& drivers = drivers_;
     auto loaded = config::load_workflow(opt_.config, drivers);
     std::vector<std::string> problems;
     for (const auto& e : loaded.errors) problems.push_back(e.format());
@@ -117,7 +142,7 @@ class Daemon {
       }
       std::vector<protocol::Hello> hellos;
       std::vector<int> sizes;
-      for (const auto& l : links_) {
+      for (const auto& l : scheduler_.links()) {
         hellos.push_back(l.hello);
         sizes.push_back(l.app.size);
       }
@@ -127,22 +152,22 @@ class Daemon {
     }
     if (!problems.empty()) {
       for (const auto& p : problems) std::cerr << "pbms: refused: " << p << "\n";
-      welcome_all(false, fmt::format("{}", fmt::join(problems, "; ")));
+      scheduler_.welcome(false, fmt::format("{}", fmt::join(problems, "; ")));
       return 1;
     }
     wf_ = std::move(*loaded.workflow);
 
     std::vector<ProgramLayout> layout{{"coupler", 1, world.coupler().first_world_rank}};
-    for (const auto& l : links_) {
+    for (const auto& l : scheduler_.links()) {
       layout.push_back({l.hello.program, l.app.size, l.app.first_world_rank});
     }
     record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line);
-    for (const auto& l : links_) record_->set_software(l.hello.software);
+    for (const auto& l : scheduler_.links()) record_->set_software(l.hello.software);
     setup_log();
-    welcome_all(true, "");
+    scheduler_.welcome(true, "");
 
     log(fmt::format("run '{}' -> {}", wf_.run_name, record_->dir().string()));
-    for (const auto& l : links_) {
+    for (const auto& l : scheduler_.links()) {
       log(fmt::format("  {} on {} rank{} (declares: {})", l.hello.program, l.app.size,
                       l.app.size == 1 ? "" : "s", fmt::join(l.hello.capabilities, ", ")));
     }
@@ -153,7 +178,7 @@ class Daemon {
         fail("coupler", 0, wf_.stages[i].name, -1, e.what());
       }
     }
-    for (const auto& l : links_) l.channel.send(protocol::Shutdown{"workflow complete"}, 0);
+    scheduler_.shutdown("workflow complete");
     record_->finished();
     log(fmt::format("done: summary in {}", (record_->dir() / "summary.yaml").string()));
     spdlog::shutdown();
@@ -161,19 +186,6 @@ class Daemon {
   }
 
  private:
-  void welcome_all(bool accepted, const std::string& reason) {
-    for (const auto& l : links_) {
-      protocol::Welcome w;
-      w.accepted = accepted;
-      w.reason = reason;
-      for (const auto& o : links_) {
-        if (o.app.appnum != l.app.appnum)
-          w.peers.push_back({o.hello.program, o.app.appnum, o.app.size});
-      }
-      l.channel.send(w, 0);
-    }
-  }
-
   void setup_log() {
     auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(record_->log_path().string());
     file->set_pattern("[%Y-%m-%d %H:%M:%S] %v");
@@ -186,81 +198,89 @@ class Daemon {
     if (file_log_) file_log_->info(s);
   }
 
-  const DriverLink& link_for(const std::string& program) const {
-    for (const auto& l : links_) {
-      if (l.hello.program == program) return l;
-    }
-    throw Error(fmt::format("{} is not part of this job", program));
-  }
-
   void run_stage(size_t index) {
     const auto& stage = wf_.stages[index];
-    const auto& link = link_for(stage.program);
     protocol::RunStage rs;
     rs.index = static_cast<int32_t>(index);
     rs.name = stage.name;
     rs.kind = stage.kind;
-    try {
-      rs.params_yaml = dump(resolve_references(stage.params, done_));
-    } catch (const Error& e) {
-      fail(stage.program, 0, stage.name, -1, e.what());
-    }
-    rs.materials_yaml = dump(wf_.materials);
+    rs.params_yaml = dump(resolve_references(stage.params, done_));
+    rs.materials_yaml = dump(resolve_materials(wf_.materials, done_));
     rs.run_dir = record_->dir().string();
     rs.seed = wf_.seed;
     record_->stage_started(stage);
     log(fmt::format("stage {}/{} '{}' ({}) on {}", index + 1, wf_.stages.size(), stage.name,
                     stage.kind, stage.program));
-    link.channel.send(rs, 0);
+    const std::optional<std::string> identity = cache_identity_of(stage, rs);
+    const ResultCache cache(std::filesystem::path(wf_.output_dir) / ".cache");
+    if (identity) {
+      if (auto hit = cache.find(*identity, record_->dir())) {
+        log(fmt::format("stage '{}' reused from the cache ({}), computed there in {}", stage.name,
+                        cache.entry_dir(*identity).string(), format_duration(hit->wall_s)));
+        finish_stage(stage, std::move(*hit));
+        return;
+      }
+    }
+    const auto request = scheduler_.submit(stage.program, rs);
 
     ProgressMeter meter(stage.name, opt_.terminal);
     ProgressMeter file_meter(stage.name, false);
     const auto t0 = Clock::now();
     auto now = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-    auto pause = std::chrono::microseconds(100);
-    for (;;) {
-      bool got = false;
-      for (const auto& l : links_) {
-        int source = 0;
-        auto m = l.channel.poll(&source);
-        if (!m) continue;
-        got = true;
-        if (auto* p = std::get_if<protocol::Progress>(&*m)) {
-          record_->progress(p->stage, p->step, p->total_steps, p->sim_time_ps);
-          if (auto line = meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
-            console_.progress(*line);
-          }
-          if (auto line =
-                  file_meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
-            if (file_log_) file_log_->info(*line);
-          }
-        } else if (auto* d = std::get_if<protocol::StageDone>(&*m)) {
-          console_.end_progress();
-          record_->stage_finished(stage, d->results, d->wall_s);
-          log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(d->wall_s)));
-          for (const auto& s : d->results.scalars) {
-            const std::string err =
-                std::isfinite(s.std_error) ? fmt::format(" ± {:.4g}", s.std_error) : "";
-            log(fmt::format("  {} = {:.6g}{} {}", s.key, s.value, err, s.unit));
-          }
-          done_[stage.name] = std::move(d->results);
-          return;
-        } else if (auto* f = std::get_if<protocol::Fatal>(&*m)) {
-          fail(f->program, f->rank, f->stage, f->step, f->message);
-        } else {
-          fail(l.hello.program, source, stage.name, -1,
-               fmt::format(
-                   "protocol error: unexpected {} message",
-                   std::visit([](const auto& x) { return protocol::type_name(x.kType); }, *m)));
-        }
+    const Answer answer = scheduler_.wait_for(request, [&](const Answer& a) {
+      const auto* p = std::get_if<protocol::Progress>(&a);
+      if (!p) return;
+      record_->progress(p->stage, p->step, p->total_steps, p->sim_time_ps);
+      if (auto line = meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
+        console_.progress(*line);
       }
-      if (got) {
-        pause = std::chrono::microseconds(100);
-      } else {
-        std::this_thread::sleep_for(pause);
-        pause = std::min(pause * 2, std::chrono::microseconds(20000));
+      if (auto line = file_meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
+        if (file_log_) file_log_->info(*line);
       }
+    });
+    // A workflow stage without its result leaves later stages without their
+    // inputs: it ends the run, though the driver could go on.
+    if (const auto* f = std::get_if<protocol::StageFailed>(&answer)) {
+      fail(f->program, f->rank, f->stage, f->step, f->reason);
     }
+    auto done = std::get<protocol::StageDone>(answer);
+    console_.end_progress();
+    if (identity) cache.store(*identity, done, record_->dir());
+    log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
+    finish_stage(stage, std::move(done));
+  }
+
+  void finish_stage(const config::StageConfig& stage, protocol::StageDone done) {
+    record_->stage_finished(stage, done.results, done.wall_s);
+    for (const auto& s : done.results.scalars) {
+      const std::string err =
+          std::isfinite(s.std_error) ? fmt::format(" ± {:.4g}", s.std_error) : "";
+      log(fmt::format("  {} = {:.6g}{} {}", s.key, s.value, err, s.unit));
+    }
+    done_[stage.name] = std::move(done.results);
+  }
+
+  // What decides a cacheable stage's result, or nothing for other stages.
+  // Only the materials the stage names count, so that editing another
+  // material (a refit's potential) keeps the MD results.
+  std::optional<std::string> cache_identity_of(const config::StageConfig& stage,
+                                               const protocol::RunStage& rs) const {
+    const config::StageKindSpec* spec = nullptr;
+    for (const auto& d : drivers_) {
+      if (!spec) spec = d.stage_kind(stage.kind);
+    }
+    if (!spec || !spec->cacheable) return std::nullopt;
+    const YAML::Node all = YAML::Load(rs.materials_yaml);
+    YAML::Node own(YAML::NodeType::Map);
+    for (const auto& p : spec->params) {
+      const YAML::Node name = stage.params[p.name];
+      if (p.names_material && name && name.IsScalar()) own[name.Scalar()] = all[name.Scalar()];
+    }
+    protocol::RunStage keyed = rs;
+    keyed.materials_yaml = dump(own);
+    const auto& link = scheduler_.link(stage.program);
+    return cache_identity(keyed, link.hello.software,
+                          file_digest(opt_.drivers_dir / stage.program));
   }
 
   [[noreturn]] void fail(const std::string& program, int rank, const std::string& stage,
@@ -285,7 +305,8 @@ class Daemon {
 
   DaemonOptions opt_;
   Console console_;
-  std::vector<DriverLink> links_;
+  Scheduler scheduler_;
+  std::vector<config::DriverDescription> drivers_;
   config::Workflow wf_;
   std::unique_ptr<RunRecord> record_;
   std::shared_ptr<spdlog::logger> file_log_;

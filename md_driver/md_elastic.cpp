@@ -27,6 +27,7 @@ config::StageKindSpec ElasticStage::spec() {
       "Cubic elastic constants from +/- finite strains: relaxed at 0 K, and optionally "
       "averaged by NVT MD at a temperature";
   s.material_kinds = {"eam_alloy", "eam_fs"};
+  s.cacheable = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
       Param::int_list("cells", "Unit cells along x, y, z")

@@ -24,6 +24,7 @@ config::StageKindSpec IsothermStage::spec() {
       "Pressure-volume isotherm of a periodic crystal by NPT MD (Nose-Hoover), with a "
       "Birch-Murnaghan fit";
   s.material_kinds = {"eam_alloy", "eam_fs"};
+  s.cacheable = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
       Param::real("temperature", Dimension::kTemperature, "Temperature").def(298.0).above(0),

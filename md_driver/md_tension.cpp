@@ -23,6 +23,7 @@ config::StageKindSpec TensionStage::spec() {
       "Tension of a nanowire with free surfaces, pulled along x by rigid grips at a "
       "constant strain rate, Nose-Hoover NVT";
   s.material_kinds = {"eam_alloy", "eam_fs"};
+  s.cacheable = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
       Param::int_list("cells", "Wire size in unit cells (length x, cross-section y, z)")
@@ -62,7 +63,8 @@ config::StageKindSpec TensionStage::spec() {
        "The same slope from the grip forces over the initial cross-section"},
       {"ultimate_stress", OutputSpec::Shape::kScalar, "GPa", "Largest stress reached"},
       {"strain_at_ultimate", OutputSpec::Shape::kScalar, "1", "Strain at the largest stress"},
-      {"stress_strain", OutputSpec::Shape::kTable, "", "Strain, virial stress, grip-force stress and temperature"},
+      {"stress_strain", OutputSpec::Shape::kTable, "",
+       "Strain, virial stress, grip-force stress and temperature"},
   };
   return s;
 }
@@ -152,23 +154,23 @@ void TensionStage::run(StageContext& ctx) {
   const double to_gpa = 1.0 / units::kBarPerGPa;
   lmp.command("compute atom_stress wire stress/atom NULL");
   lmp.command("compute wire_sxx wire reduce sum c_atom_stress[1]");
-  lmp.command(fmt::format("variable gauge_length equal {:.12g}+{:.12g}*step*dt", gauge,
-                          2.0 * grip_speed));
+  lmp.command(
+      fmt::format("variable gauge_length equal {:.12g}+{:.12g}*step*dt", gauge, 2.0 * grip_speed));
   lmp.command(fmt::format("variable virial_stress equal c_wire_sxx/({:.12g}*v_gauge_length)*{}",
                           area, to_gpa));
   lmp.command(
       fmt::format("variable grip_stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
                   area, units::kBarPerEvPerA3 * to_gpa));
-  lmp.command(fmt::format("fix stress_avg all ave/time 1 {0} {0} v_virial_stress v_grip_stress",
-                          every));
+  lmp.command(
+      fmt::format("fix stress_avg all ave/time 1 {0} {0} v_virial_stress v_grip_stress", every));
   // Strain at the middle of the window the stress was averaged over.
   lmp.command(
       fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1), rate));
   lmp.command("variable virial_avg equal f_stress_avg[1]");
   lmp.command("variable grip_avg equal f_stress_avg[2]");
   lmp.command("variable wire_temp equal c_wire_temp");
-  lmp.command(fmt::format("fix samples all vector {} v_strain v_virial_avg v_grip_avg v_wire_temp",
-                          every));
+  lmp.command(
+      fmt::format("fix samples all vector {} v_strain v_virial_avg v_grip_avg v_wire_temp", every));
   lmp.run(n_load, chunk, [&](int64_t done) {
     traj.maybe_write(n_equil + done, (n_equil + done) * dt);
     ctx.progress(n_equil + done, total, (n_equil + done) * dt,
@@ -189,9 +191,10 @@ void TensionStage::run(StageContext& ctx) {
       }
     }
     if (fx.size() < 3) {
-      throw Error(fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
-                              "more often or raise fit_max_strain",
-                              ctx.stage(), fx.size(), fit_max));
+      throw Error(
+          fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
+                      "more often or raise fit_max_strain",
+                      ctx.stage(), fx.size(), fit_max));
     }
     return analysis::fit_line(fx, fy);
   };

@@ -1,5 +1,6 @@
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -117,13 +118,18 @@ class DriverRuntime {
     }
   }
 
+  // Each rank group serves its own stream of requests; its leader talks to
+  // the coupler. Until the coupler sends Regroup the group is the program.
   int serve() {
     if (!handshake()) return 1;
+    regroup(local().size());
     for (;;) {
       protocol::Message m = next_command();
       if (std::holds_alternative<protocol::Shutdown>(m)) return 0;
       if (const auto* rs = std::get_if<protocol::RunStage>(&m)) {
         run_stage(*rs);
+      } else if (const auto* rg = std::get_if<protocol::Regroup>(&m)) {
+        regroup(rg->group_ranks);
       } else {
         throw Error("unexpected message from the coupler");
       }
@@ -155,6 +161,7 @@ class DriverRuntime {
   }
 
   const mpi::Comm& local() const { return world_.local(); }
+  const mpi::Comm& group() const { return group_; }
   const mpi::Channel& coupler() const { return coupler_; }
   MPI_Comm peer(const std::string& program) const {
     for (const auto& p : peer_programs_) {
@@ -189,40 +196,68 @@ class DriverRuntime {
     }
     mpi::bcast_gently(&accepted, 1, MPI_INT, 0, local().get());
     if (!accepted) return false;
-    const auto m = broadcast(welcome_bytes_);
+    const auto m = broadcast(welcome_bytes_, local().get());
     peer_programs_ = std::get<protocol::Welcome>(m).peers;
     return true;
   }
 
-  // Rank 0 holds the bytes; every rank gets the decoded message.
-  protocol::Message broadcast(std::vector<std::byte>& bytes) {
+  // Every rank of the program arrives here: the coupler sends Regroup to
+  // every group leader. Group g holds ranks [g n, (g + 1) n).
+  void regroup(int group_ranks) {
+    const int n = std::max(1, group_ranks);
+    MPI_Request barrier = MPI_REQUEST_NULL;
+    mpi::check(MPI_Ibarrier(local().get(), &barrier), "MPI_Ibarrier");
+    mpi::wait_gently(barrier);
+    MPI_Comm split = MPI_COMM_NULL;
+    mpi::check(MPI_Comm_split(local().get(), local().rank() / n, local().rank(), &split),
+               "MPI_Comm_split");
+    group_ = mpi::Comm(split);
+  }
+
+  // The root holds the bytes; every rank of `comm` gets the decoded message.
+  static protocol::Message broadcast(std::vector<std::byte>& bytes, MPI_Comm comm) {
     uint64_t n = bytes.size();
-    mpi::bcast_gently(&n, 1, MPI_UINT64_T, 0, local().get());
+    mpi::bcast_gently(&n, 1, MPI_UINT64_T, 0, comm);
     bytes.resize(n);
-    mpi::bcast_gently(bytes.data(), static_cast<int>(n), MPI_BYTE, 0, local().get());
+    mpi::bcast_gently(bytes.data(), static_cast<int>(n), MPI_BYTE, 0, comm);
     return protocol::unpack(bytes.data(), bytes.size());
   }
 
   protocol::Message next_command() {
     std::vector<std::byte> bytes;
-    if (local().rank() == 0) bytes = protocol::pack(coupler_.receive());
-    return broadcast(bytes);
+    if (group().rank() == 0) bytes = protocol::pack(coupler_.receive());
+    return broadcast(bytes, group().get());
   }
 
   void run_stage(const protocol::RunStage& rs) {
     copy_name(g_stage, sizeof g_stage, rs.name);
     g_step.store(0);
     const auto t0 = Clock::now();
-    StageContext ctx(*this, rs.name, rs.kind, YAML::Load(rs.params_yaml),
-                     YAML::Load(rs.materials_yaml), rs.run_dir, rs.seed);
-    auto stage = registry_.create(rs.kind);
-    stage->run(ctx);
-    if (local().rank() == 0) {
-      protocol::StageDone done;
-      done.stage = rs.name;
-      done.wall_s = seconds_since(t0);
-      done.results = std::move(ctx.results());
-      coupler_.send(done, 0);
+    try {
+      StageContext ctx(*this, rs.request, rs.name, rs.kind, YAML::Load(rs.params_yaml),
+                       YAML::Load(rs.materials_yaml), rs.run_dir, rs.seed);
+      auto stage = registry_.create(rs.kind);
+      stage->run(ctx);
+      if (group().rank() == 0) {
+        protocol::StageDone done;
+        done.request = rs.request;
+        done.stage = rs.name;
+        done.wall_s = seconds_since(t0);
+        done.results = std::move(ctx.results());
+        coupler_.send(done, 0);
+      }
+    } catch (const StageFailure& e) {
+      if (group().rank() == 0) {
+        protocol::StageFailed failed;
+        failed.request = rs.request;
+        failed.stage = rs.name;
+        failed.program = info_.program;
+        failed.rank = local().rank();
+        failed.step = g_step.load();
+        failed.wall_s = seconds_since(t0);
+        failed.reason = e.what();
+        coupler_.send(failed, 0);
+      }
     }
     g_stage[0] = 0;
     g_step.store(-1);
@@ -231,6 +266,7 @@ class DriverRuntime {
   const DriverInfo& info_;
   const StageRegistry& registry_;
   mpi::MpmdWorld world_;
+  mpi::Comm group_;
   mpi::Channel coupler_;
   std::map<int, mpi::Comm> peers_by_app_;
   std::vector<protocol::Peer> peer_programs_;
@@ -239,10 +275,11 @@ class DriverRuntime {
 
 // ---------------------------------------------------------------- context
 
-StageContext::StageContext(DriverRuntime& runtime, std::string stage, std::string kind,
-                           const YAML::Node& params, const YAML::Node& materials,
+StageContext::StageContext(DriverRuntime& runtime, int64_t request, std::string stage,
+                           std::string kind, const YAML::Node& params, const YAML::Node& materials,
                            std::filesystem::path run_dir, uint64_t seed)
     : runtime_(runtime),
+      request_(request),
       stage_(std::move(stage)),
       kind_(std::move(kind)),
       params_(params),
@@ -257,13 +294,29 @@ YAML::Node StageContext::material(const std::string& name) const {
 }
 
 MPI_Comm StageContext::comm() const {
-  return runtime_.local().get();
+  return runtime_.group().get();
 }
 int StageContext::rank() const {
-  return runtime_.local().rank();
+  return runtime_.group().rank();
 }
 int StageContext::size() const {
-  return runtime_.local().size();
+  return runtime_.group().size();
+}
+
+void StageContext::fail_together(bool failed, const std::string& reason) const {
+  // The lowest failing rank speaks for the group.
+  const int mine = failed ? rank() : size();
+  int first = size();
+  MPI_Request r = MPI_REQUEST_NULL;
+  mpi::check(MPI_Iallreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm(), &r), "MPI_Iallreduce");
+  mpi::wait_gently(r);
+  if (first == size()) return;
+  std::string text = reason;
+  int length = static_cast<int>(text.size());
+  mpi::bcast_gently(&length, 1, MPI_INT, first, comm());
+  text.resize(static_cast<std::size_t>(length));
+  mpi::bcast_gently(text.data(), length, MPI_CHAR, first, comm());
+  throw StageFailure(text);
 }
 MPI_Comm StageContext::peer(const std::string& program) const {
   return runtime_.peer(program);
@@ -287,6 +340,7 @@ void StageContext::progress(int64_t step, int64_t total_steps, double sim_time_p
   last_report_s_ = now;
   last_report_step_ = step;
   protocol::Progress p;
+  p.request = request_;
   p.stage = stage_;
   p.step = step;
   p.total_steps = total_steps;

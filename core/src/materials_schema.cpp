@@ -61,23 +61,32 @@ Param materials_schema() {
   // Continuum materials of the MPM engine. Numbers are in metal units
   // (bar, g/cm^3) unless a stage runs in `units: consistent`, where they
   // are plain numbers of one consistent system (the seed's 1-D bar).
-  const Param density =
-      Param::real("density", Dimension::kDensity, "Initial mass density").require().above(0);
+  const Param density = Param::real("density", Dimension::kDensity, "Initial mass density")
+                            .require()
+                            .above(0)
+                            .referable();
   const std::vector<Param> elastic_fields = {
       density,
-      Param::real("youngs_modulus", Dimension::kPressure, "Young's modulus E").require().above(0),
+      Param::real("youngs_modulus", Dimension::kPressure, "Young's modulus E")
+          .require()
+          .above(0)
+          .referable(),
       Param::real("poisson_ratio", Dimension::kNone, "Poisson's ratio")
           .def(0.3)
           .above(-1.0)
-          .at_most(0.49),
+          .at_most(0.49)
+          .referable(),
   };
   std::vector<Param> j2_fields = elastic_fields;
-  j2_fields.push_back(
-      Param::real("yield_stress", Dimension::kPressure, "Initial yield stress").require().above(0));
+  j2_fields.push_back(Param::real("yield_stress", Dimension::kPressure, "Initial yield stress")
+                          .require()
+                          .above(0)
+                          .referable());
   j2_fields.push_back(
       Param::real("hardening_modulus", Dimension::kPressure, "Linear isotropic hardening modulus H")
           .def(0.0)
-          .at_least(0));
+          .at_least(0)
+          .referable());
   const std::vector<Param> gas_fields = {
       density,
       Param::real("gamma", Dimension::kNone, "Ratio of specific heats").def(1.4).above(1.0),

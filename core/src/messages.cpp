@@ -33,6 +33,10 @@ std::string_view type_name(MessageType t) {
       return "Fatal";
     case MessageType::kShutdown:
       return "Shutdown";
+    case MessageType::kRegroup:
+      return "Regroup";
+    case MessageType::kStageFailed:
+      return "StageFailed";
   }
   return "unknown";
 }
@@ -76,6 +80,10 @@ Message unpack(const std::byte* data, size_t size) {
       return decode_as<Fatal>(d);
     case MessageType::kShutdown:
       return decode_as<Shutdown>(d);
+    case MessageType::kRegroup:
+      return decode_as<Regroup>(d);
+    case MessageType::kStageFailed:
+      return decode_as<StageFailed>(d);
   }
   throw Error(fmt::format("protocol: unknown message type {}", static_cast<int>(type)));
 }

@@ -25,6 +25,7 @@ constexpr KindName kKindNames[] = {
     {ParamKind::kMap, "map"},
     {ParamKind::kMapOf, "named map"},
     {ParamKind::kListOf, "list"},
+    {ParamKind::kTable, "table"},
 };
 
 constexpr std::pair<units::Dimension, std::string_view> kDimNames[] = {
@@ -108,6 +109,12 @@ Param Param::map_of(std::string n, Param element, std::string d) {
 Param Param::list_of(std::string n, Param element, std::string d) {
   Param p = make(std::move(n), ParamKind::kListOf, std::move(d));
   p.fields.push_back(std::move(element));
+  return p;
+}
+
+Param Param::table(std::string n, std::string d) {
+  Param p = make(std::move(n), ParamKind::kTable, std::move(d));
+  p.allow_reference = true;
   return p;
 }
 

@@ -33,6 +33,7 @@ YAML::Node to_yaml(const StageKindSpec& s) {
     n["outputs"].push_back(on);
   }
   n["material_kinds"] = s.material_kinds;
+  if (s.cacheable) n["cacheable"] = true;
   return n;
 }
 
@@ -52,6 +53,7 @@ StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
     s.outputs.push_back(o);
   }
   if (n["material_kinds"]) s.material_kinds = n["material_kinds"].as<std::vector<std::string>>();
+  s.cacheable = n["cacheable"] && n["cacheable"].as<bool>();
   return s;
 }
 

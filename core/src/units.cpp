@@ -123,4 +123,11 @@ double parse_quantity(std::string_view text, Dimension d) {
                           accepted_symbols(d)));
 }
 
+double to_metal(double value, std::string_view unit) {
+  for (const auto& u : kUnits) {
+    if (u.symbol == unit) return value * u.to_canonical;
+  }
+  return value;
+}
+
 }  // namespace pbms::units

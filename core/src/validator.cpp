@@ -226,10 +226,17 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
     r.target = node["from"].Scalar();
     r.line = node["from"].Mark().line + 1;
     r.column = node["from"].Mark().column + 1;
+    r.wants_table = p.kind == ParamKind::kTable;
     references_.push_back(r);
     return YAML::Clone(node);
   }
   switch (p.kind) {
+    case ParamKind::kTable:
+      error(node, path,
+            fmt::format("expected a table of an earlier stage, written {{from: <stage>.<table>}}; "
+                        "got {}",
+                        shown(node)));
+      return {};
     case ParamKind::kMap: {
       if (!node.IsMap()) {
         error(node, path, fmt::format("expected a map, got {}", shown(node)));

@@ -71,10 +71,27 @@ bool check_text(const std::string& text, Validator& v) {
   return true;
 }
 
-int stage_index_of(const std::string& key_path) {
-  // key paths of stage parameters start with "stages[i]"
-  if (key_path.rfind("stages[", 0) != 0) return -1;
-  return std::stoi(key_path.substr(7));
+// The first stage that names each material.
+std::map<std::string, int> first_stage_using(const std::vector<Reference>& refs) {
+  std::map<std::string, int> first;
+  for (const auto& r : refs) {
+    if (r.type != Reference::Target::kMaterial || r.key_path.rfind("stages[", 0) != 0) continue;
+    const int idx = std::stoi(r.key_path.substr(7));
+    const auto it = first.find(r.target);
+    if (it == first.end() || idx < it->second) first[r.target] = idx;
+  }
+  return first;
+}
+
+// The stage a key belongs to: "stages[i]..." is stage i; a key inside
+// "materials.<name>" belongs to the first stage that uses that material,
+// since that stage is the first to need it resolved. -1: no stage.
+int stage_index_of(const std::string& key_path, const std::map<std::string, int>& first_use) {
+  if (key_path.rfind("stages[", 0) == 0) return std::stoi(key_path.substr(7));
+  if (key_path.rfind("materials.", 0) != 0) return -1;
+  const std::string rest = key_path.substr(10);
+  const auto it = first_use.find(rest.substr(0, rest.find('.')));
+  return it == first_use.end() ? -1 : it->second;
 }
 
 }  // namespace
@@ -204,11 +221,12 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
   // Cross references: stage outputs must come from earlier stages; materials
   // must exist and suit the stage.
   const YAML::Node materials = root["materials"];
+  const std::map<std::string, int> first_use = first_stage_using(v.references());
   for (const auto& r : v.references()) {
     YAML::Mark m;
     m.line = r.line - 1;
     m.column = r.column - 1;
-    const int idx = stage_index_of(r.key_path);
+    const int idx = stage_index_of(r.key_path, first_use);
     if (r.type == Reference::Target::kMaterial) {
       if (!materials.IsMap() || !materials[r.target]) {
         v.error_at(m, r.key_path,
@@ -258,9 +276,12 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
       v.error_at(m, r.key_path,
                  fmt::format("stage '{}' ({}) has no output '{}' (outputs: {}){}", sname,
                              spec->kind, oname, fmt::join(names, ", "), suggest(oname, names)));
-    } else if (out->shape != OutputSpec::Shape::kScalar) {
+    } else if (out->shape != OutputSpec::Shape::kScalar && !r.wants_table) {
       v.error_at(m, r.key_path,
                  fmt::format("output '{}' is a table; this key takes a single number", r.target));
+    } else if (out->shape == OutputSpec::Shape::kScalar && r.wants_table) {
+      v.error_at(m, r.key_path,
+                 fmt::format("output '{}' is a single number; this key takes a table", r.target));
     }
   }
 

@@ -77,11 +77,11 @@ Solution solve(const Evaluate& evaluate, double target, IsothermPoint point, dou
       residual(best) <= 2.0 * best.pressure_error) {
     return {best, slope};
   }
-  throw Error("DPD isotherm: no state of pressure " + std::to_string(target) +
-              " GPa; the closest, V/V0 = " + std::to_string(best.volume_ratio) +
-              ", has P = " + std::to_string(best.pressure) +
-              " GPa (beyond the spinodal in tension, or P(V) jumps where a neighbour shell "
-              "crosses the cutoff)");
+  throw StageFailure("DPD isotherm: no state of pressure " + std::to_string(target) +
+                     " GPa; the closest, V/V0 = " + std::to_string(best.volume_ratio) +
+                     ", has P = " + std::to_string(best.pressure) +
+                     " GPa (beyond the spinodal in tension, or P(V) jumps where a neighbour shell "
+                     "crosses the cutoff)");
 }
 
 }  // namespace
@@ -105,6 +105,10 @@ IsothermPoint isotherm_point(PairStyle& pair, const CrystalSpec& reference,
   std::vector<double> pressure(samples.size());
   for (std::size_t k = 0; k < samples.size(); ++k) pressure[k] = pressure_of(samples[k]);
   const BlockAverage p = block_average(pressure);
+  if (!std::isfinite(p.mean)) {
+    throw StageFailure("DPD isotherm: the pressure at V/V0 = " + std::to_string(volume_ratio) +
+                       " is not finite (the crystal came apart)");
+  }
   return {volume_ratio, a, p.mean, p.error};
 }
 
@@ -118,8 +122,8 @@ IsothermPoint volume_ratio_at_pressure(PairStyle& pair, const CrystalSpec& refer
   const double cold_slope =
       (cold_point(1.0 + h).pressure - cold_point(1.0 - h).pressure) / (2.0 * h);
   if (!(cold_slope < 0.0)) {
-    throw Error("DPD isotherm: the static crystal at the reference lattice constant has " +
-                std::string("dP/dV >= 0 (unstable); start from another lattice constant"));
+    throw StageFailure("DPD isotherm: the static crystal at the reference lattice constant has " +
+                       std::string("dP/dV >= 0 (unstable); start from another lattice constant"));
   }
   const Solution cold_root =
       solve(cold_point, pressure_gpa, cold_point(1.0), cold_slope, kStaticIterations);

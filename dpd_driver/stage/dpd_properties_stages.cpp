@@ -75,17 +75,23 @@ Crystal crystal_from(StageContext& ctx) {
 }
 
 // Runs `work` on rank 0; a failure there reaches every rank, so that the
-// job ends with rank 0's message rather than a hang.
+// job ends with rank 0's message rather than a hang. A StageFailure (a
+// crystal that cannot be sampled) stays one, so the driver stays in service.
 template <class Work>
 void on_rank_zero(StageContext& ctx, Work work) {
   std::string failure;
+  bool stage_failure = false;
   if (ctx.rank() == 0) {
     try {
       work();
+    } catch (const StageFailure& e) {
+      failure = e.what();
+      stage_failure = true;
     } catch (const Error& e) {
       failure = e.what();
     }
   }
+  ctx.fail_together(stage_failure, failure);
   int length = static_cast<int>(failure.size());
   mpi::bcast_gently(&length, 1, MPI_INT, 0, ctx.comm());
   failure.resize(static_cast<std::size_t>(length));

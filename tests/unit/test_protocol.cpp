@@ -45,6 +45,7 @@ TEST(Protocol, Welcome) {
 
 TEST(Protocol, RunStage) {
   RunStage r{3,
+             41,
              "isotherm",
              "md_isotherm",
              "temperature: 298\n",
@@ -53,6 +54,7 @@ TEST(Protocol, RunStage) {
              0xfedcba9876543210ULL};
   const auto b = round_trip(r);
   EXPECT_EQ(b.index, 3);
+  EXPECT_EQ(b.request, 41);
   EXPECT_EQ(b.name, r.name);
   EXPECT_EQ(b.kind, r.kind);
   EXPECT_EQ(b.params_yaml, r.params_yaml);
@@ -62,8 +64,9 @@ TEST(Protocol, RunStage) {
 }
 
 TEST(Protocol, Progress) {
-  Progress p{"isotherm", 1234, 37500, 2.468, "P = 5 GPa: production"};
+  Progress p{7, "isotherm", 1234, 37500, 2.468, "P = 5 GPa: production"};
   const auto b = round_trip(p);
+  EXPECT_EQ(b.request, 7);
   EXPECT_EQ(b.stage, p.stage);
   EXPECT_EQ(b.step, 1234);
   EXPECT_EQ(b.total_steps, 37500);
@@ -73,6 +76,7 @@ TEST(Protocol, Progress) {
 
 TEST(Protocol, StageDone) {
   StageDone d;
+  d.request = 1LL << 40;
   d.stage = "isotherm";
   d.wall_s = 12.5;
   d.results.add_scalar("bulk_modulus", 135.2, "GPa");
@@ -81,6 +85,7 @@ TEST(Protocol, StageDone) {
   d.results.files = {"isotherm/p0.in"};
   d.results.attributes["material"] = "cu";
   const auto b = round_trip(d);
+  EXPECT_EQ(b.request, 1LL << 40);
   EXPECT_EQ(b.stage, "isotherm");
   EXPECT_DOUBLE_EQ(b.wall_s, 12.5);
   ASSERT_EQ(b.results.scalars.size(), 2u);
@@ -101,6 +106,22 @@ TEST(Protocol, Fatal) {
   EXPECT_EQ(b.stage, f.stage);
   EXPECT_EQ(b.step, 4200);
   EXPECT_EQ(b.message, f.message);
+}
+
+TEST(Protocol, StageFailed) {
+  StageFailed f{12, "fit", "dpd_driver", 2, 300, 1.5, "the crystal melted: |dx| > a/2"};
+  const auto b = round_trip(f);
+  EXPECT_EQ(b.request, 12);
+  EXPECT_EQ(b.stage, f.stage);
+  EXPECT_EQ(b.program, f.program);
+  EXPECT_EQ(b.rank, 2);
+  EXPECT_EQ(b.step, 300);
+  EXPECT_DOUBLE_EQ(b.wall_s, 1.5);
+  EXPECT_EQ(b.reason, f.reason);
+}
+
+TEST(Protocol, Regroup) {
+  EXPECT_EQ(round_trip(Regroup{3}).group_ranks, 3);
 }
 
 TEST(Protocol, Shutdown) {

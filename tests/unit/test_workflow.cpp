@@ -2,6 +2,7 @@
 // units, references between stages and the errors users see.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -125,7 +126,8 @@ TEST(Capabilities, RefusesUndeclaredKinds) {
   s.name = "impact";
   s.kind = "dpd_run";
   s.program = "md_driver";
-  pbms::protocol::Hello h{"md_driver", "md", 1, 2, {"md_isotherm"}, {}};
+  pbms::protocol::Hello h{"md_driver",     "md", pbms::protocol::kProtocolVersion, 2,
+                          {"md_isotherm"}, {}};
   const auto problems = pbms::coupler::check_capabilities({s}, {h}, {2});
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_NE(problems[0].find("does not declare"), std::string::npos);
@@ -134,4 +136,73 @@ TEST(Capabilities, RefusesUndeclaredKinds) {
   EXPECT_EQ(pbms::coupler::check_capabilities({s}, {h}, {3}).size(), 1u);  // rank mismatch
   s.program = "mpm_driver";
   EXPECT_EQ(pbms::coupler::check_capabilities({s}, {h}, {2}).size(), 1u);  // absent driver
+}
+
+namespace {
+
+// md_driver's kinds plus a kind that takes a table and a continuum
+// material, as a coupler-side fit or an MPM stage would.
+std::vector<DriverDescription> md_and_table_taker() {
+  auto drivers = md_only();
+  StageKindSpec taker;
+  taker.kind = "takes_table";
+  taker.program = "md_driver";
+  taker.material_kinds = {"linear_elastic"};
+  taker.params = {Param::table("targets", "An isotherm"),
+                  Param::identifier("material", "A continuum material").material()};
+  drivers[0].stage_kinds.push_back(taker);
+  return drivers;
+}
+
+const char* kElastic = R"(  rod:
+    kind: linear_elastic
+    density: 8.96
+    youngs_modulus: {from: wire.youngs_modulus}
+)";
+
+}  // namespace
+
+TEST(Workflow, TableReferencesGoToKeysThatTakeTables) {
+  const auto ok = write("table_ok.yaml", std::string(kHeader) + kElastic + R"(stages:
+  - {name: iso, kind: md_isotherm, material: cu, pressures: [0, 2 GPa, 5 GPa]}
+  - {name: wire, kind: md_tension, material: cu}
+  - {name: fit, kind: takes_table, targets: {from: iso.isotherm}, material: rod}
+)");
+  const auto r = load_workflow(ok, md_and_table_taker());
+  ASSERT_TRUE(r.errors.empty()) << r.errors[0].format();
+
+  const auto bad = write("table_bad.yaml", std::string(kHeader) + R"(stages:
+  - {name: iso, kind: md_isotherm, material: cu, pressures: [0, 2 GPa, 5 GPa]}
+  - {name: a, kind: takes_table, targets: {from: iso.bulk_modulus}}
+  - {name: b, kind: takes_table, targets: [1, 2]}
+  - {name: c, kind: md_tension, material: cu, lattice_constant: {from: iso.isotherm}}
+)");
+  auto e = load_workflow(bad, md_and_table_taker());
+  ASSERT_EQ(e.errors.size(), 3u);
+  std::sort(e.errors.begin(), e.errors.end(),
+            [](const auto& x, const auto& y) { return x.line < y.line; });
+  EXPECT_EQ(e.errors[0].line, 11);
+  EXPECT_NE(e.errors[0].message.find("is a single number; this key takes a table"),
+            std::string::npos)
+      << e.errors[0].format();
+  EXPECT_EQ(e.errors[1].line, 12);
+  EXPECT_NE(e.errors[1].message.find("expected a table of an earlier stage"), std::string::npos);
+  EXPECT_EQ(e.errors[2].line, 13);
+  EXPECT_NE(e.errors[2].message.find("is a table; this key takes a single number"),
+            std::string::npos);
+}
+
+// A material that takes an earlier stage's result can only be used by the
+// stages after that one.
+TEST(Workflow, MaterialReferencesFollowTheStageOrder) {
+  const auto late = write("material_late.yaml", std::string(kHeader) + kElastic + R"(stages:
+  - {name: iso, kind: md_isotherm, material: cu, pressures: [0, 2 GPa, 5 GPa]}
+  - {name: fit, kind: takes_table, targets: {from: iso.isotherm}, material: rod}
+  - {name: wire, kind: md_tension, material: cu}
+)");
+  const auto e = load_workflow(late, md_and_table_taker());
+  ASSERT_EQ(e.errors.size(), 1u);
+  EXPECT_EQ(e.errors[0].line, 12);
+  EXPECT_EQ(e.errors[0].key_path, "materials.rod.youngs_modulus");
+  EXPECT_NE(e.errors[0].message.find("runs after"), std::string::npos) << e.errors[0].format();
 }

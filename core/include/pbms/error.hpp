@@ -13,6 +13,15 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A stage that cannot give a result for the inputs it was sent (a candidate
+// potential whose crystal melts, a NaN), thrown on every rank of the stage's
+// group at once. The driver answers StageFailed and stays in service, so a
+// fit can go on to the next candidate. Any other exception ends the job.
+class StageFailure : public Error {
+ public:
+  using Error::Error;
+};
+
 // A problem in a user's input file, located precisely enough to be fixed
 // without reading the source: file, 1-based line and column, key path.
 struct ConfigError {

@@ -39,6 +39,11 @@ std::string_view canonical_symbol(Dimension d);
 // the wrong dimension.
 double parse_quantity(std::string_view text, Dimension d);
 
+// A value reported in `unit` (a stage result: "87.2 GPa") in metal units,
+// so that it can stand where a config key expects one. Symbols that are not
+// a unit PBMS converts ("1", "kg/m^3") leave the value as it is.
+double to_metal(double value, std::string_view unit);
+
 // The unit symbols a user may write for a dimension, comma separated.
 std::string accepted_symbols(Dimension d);
 

@@ -28,6 +28,7 @@ enum class ParamKind {
   kMap,       // fixed keys (`fields`); with a discriminator, extra keys per variant
   kMapOf,     // user-named entries, each described by `fields[0]`
   kListOf,    // list, each element described by `fields[0]`
+  kTable,     // a table output of an earlier stage, written {from: <stage>.<table>}
 };
 
 std::string_view kind_name(ParamKind k);
@@ -67,6 +68,8 @@ struct Param {
   static Param map(std::string name, std::vector<Param> fields, std::string doc);
   static Param map_of(std::string name, Param element, std::string doc);
   static Param list_of(std::string name, Param element, std::string doc);
+  // Reaches the stage as a map of columns: {name: {unit, values}}.
+  static Param table(std::string name, std::string doc);
 
   Param& require() {
     required = true;

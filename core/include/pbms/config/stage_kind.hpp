@@ -26,6 +26,9 @@ struct StageKindSpec {
   std::vector<Param> params;  // besides the common `name` and `kind`
   std::vector<OutputSpec> outputs;
   std::vector<std::string> material_kinds;  // empty: takes no material
+  // A reference result (MD) that depends only on its input: the coupler
+  // keeps it in <output>/.cache/ and reuses it instead of running again.
+  bool cacheable = false;
 
   [[nodiscard]] const OutputSpec* output(std::string_view name) const;
 };

@@ -19,7 +19,8 @@ struct Reference {
   enum class Target { kStageOutput, kMaterial };
   Target type = Target::kStageOutput;
   std::string key_path;
-  std::string target;  // "stage.output", or a material name
+  std::string target;        // "stage.output", or a material name
+  bool wants_table = false;  // the key takes a table output, not a number
   int line = 0, column = 0;
 };
 

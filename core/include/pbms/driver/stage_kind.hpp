@@ -26,7 +26,7 @@ class DriverRuntime;  // internal
 // What a running stage sees of the world.
 class StageContext {
  public:
-  StageContext(DriverRuntime& runtime, std::string stage, std::string kind,
+  StageContext(DriverRuntime& runtime, int64_t request, std::string stage, std::string kind,
                const YAML::Node& params, const YAML::Node& materials, std::filesystem::path run_dir,
                uint64_t seed);
 
@@ -37,7 +37,8 @@ class StageContext {
   [[nodiscard]] YAML::Node material(const std::string& name) const;
   [[nodiscard]] uint64_t seed() const { return seed_; }
 
-  // The driver's own communicator (all ranks of this program).
+  // The ranks that run this request: all ranks of the program, or the
+  // request's group when the coupler split the driver into rank groups.
   [[nodiscard]] MPI_Comm comm() const;
   [[nodiscard]] int rank() const;
   [[nodiscard]] int size() const;
@@ -56,8 +57,15 @@ class StageContext {
   // Results are taken from rank 0 when run() returns.
   [[nodiscard]] StageResults& results() { return results_; }
 
+  // Collective over comm(): if any rank passes `failed`, every rank throws
+  // StageFailure with the reason of the lowest such rank. For checks that one
+  // rank can make alone (a NaN in its particles) but that must fail the
+  // request on all ranks together.
+  void fail_together(bool failed, const std::string& reason) const;
+
  private:
   DriverRuntime& runtime_;
+  int64_t request_;
   std::string stage_, kind_;
   YAML::Node params_, materials_;
   std::filesystem::path run_dir_;

@@ -14,17 +14,24 @@
 namespace pbms::protocol {
 
 inline constexpr uint32_t kMagic = 0x534d4250;  // "PBMS"
-inline constexpr uint16_t kProtocolVersion = 1;
+inline constexpr uint16_t kProtocolVersion = 2;
 
 enum class MessageType : uint16_t {
-  kHello = 1,      // driver -> coupler: who I am, what I can run
-  kWelcome = 2,    // coupler -> driver: accepted or refused, and the peers
-  kRunStage = 3,   // coupler -> driver: run one stage
-  kProgress = 4,   // driver -> coupler: where a stage is
-  kStageDone = 5,  // driver -> coupler: a stage's results
-  kFatal = 6,      // any driver rank -> coupler: this rank cannot go on
-  kShutdown = 7,   // coupler -> driver: no more work
+  kHello = 1,        // driver -> coupler: who I am, what I can run
+  kWelcome = 2,      // coupler -> driver: accepted or refused, and the peers
+  kRunStage = 3,     // coupler -> driver: run one stage
+  kProgress = 4,     // driver -> coupler: where a stage is
+  kStageDone = 5,    // driver -> coupler: a stage's results
+  kFatal = 6,        // any driver rank -> coupler: this rank cannot go on
+  kShutdown = 7,     // coupler -> driver: no more work
+  kRegroup = 8,      // coupler -> every group leader: split the driver into rank groups
+  kStageFailed = 9,  // group leader -> coupler: this request has no result; the driver goes on
 };
+
+// Every RunStage carries a request id chosen by the coupler, unique within a
+// job; the answers (Progress, StageDone, StageFailed) carry it back, so that
+// several requests can be in flight on one driver at once.
+using RequestId = int64_t;
 
 struct Hello {
   static constexpr auto kType = MessageType::kHello;
@@ -54,32 +61,50 @@ struct Welcome {
 
 struct RunStage {
   static constexpr auto kType = MessageType::kRunStage;
-  int32_t index = 0;
+  int32_t index = 0;  // of the workflow stage this request serves
+  RequestId request = 0;
   std::string name;
   std::string kind;
   std::string params_yaml;     // resolved parameters, references substituted
   std::string materials_yaml;  // the workflow's resolved materials block
   std::string run_dir;
   uint64_t seed = 0;
-  PBMS_FIELDS(index, name, kind, params_yaml, materials_yaml, run_dir, seed)
+  PBMS_FIELDS(index, request, name, kind, params_yaml, materials_yaml, run_dir, seed)
 };
 
 struct Progress {
   static constexpr auto kType = MessageType::kProgress;
+  RequestId request = 0;
   std::string stage;
   int64_t step = 0;
   int64_t total_steps = 0;
   double sim_time_ps = 0.0;
   std::string phase;  // "p = 5 GPa, production"
-  PBMS_FIELDS(stage, step, total_steps, sim_time_ps, phase)
+  PBMS_FIELDS(request, stage, step, total_steps, sim_time_ps, phase)
 };
 
 struct StageDone {
   static constexpr auto kType = MessageType::kStageDone;
+  RequestId request = 0;
   std::string stage;
   double wall_s = 0.0;
   StageResults results;
-  PBMS_FIELDS(stage, wall_s, results)
+  PBMS_FIELDS(request, stage, wall_s, results)
+};
+
+// A request that could not produce a result (a candidate crystal that melts,
+// a NaN), reported by the whole rank group at once. The driver stays in
+// service; whether the job goes on is the coupler's decision.
+struct StageFailed {
+  static constexpr auto kType = MessageType::kStageFailed;
+  RequestId request = 0;
+  std::string stage;
+  std::string program;
+  int32_t rank = 0;   // the group leader's rank in its program
+  int64_t step = -1;  // -1 when not inside a time loop
+  double wall_s = 0.0;
+  std::string reason;
+  PBMS_FIELDS(request, stage, program, rank, step, wall_s, reason)
 };
 
 struct Fatal {
@@ -98,7 +123,17 @@ struct Shutdown {
   PBMS_FIELDS(reason)
 };
 
-using Message = std::variant<Hello, Welcome, RunStage, Progress, StageDone, Fatal, Shutdown>;
+// Splits a driver's ranks into groups of `group_ranks` consecutive ranks
+// (the last group may be smaller); each group then serves one request at a
+// time. Sent to every current group leader while the driver is idle.
+struct Regroup {
+  static constexpr auto kType = MessageType::kRegroup;
+  int32_t group_ranks = 0;
+  PBMS_FIELDS(group_ranks)
+};
+
+using Message = std::variant<Hello, Welcome, RunStage, Progress, StageDone, Fatal, Shutdown,
+                             Regroup, StageFailed>;
 
 std::vector<std::byte> pack(const Message& m);
 // Throws pbms::Error on a foreign, corrupt or other-version message.
