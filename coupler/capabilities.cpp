@@ -27,6 +27,18 @@ std::vector<std::string> check_capabilities(const std::vector<config::StageConfi
     }
   }
   for (const auto& s : stages) {
+    if (s.program == config::kCouplerProgram) {
+      // The coupler runs it; the drivers it sends requests to must be here.
+      for (const auto& d : s.drivers) {
+        const bool present = std::any_of(hellos.begin(), hellos.end(),
+                                         [&](const protocol::Hello& h) { return h.program == d; });
+        if (!present) {
+          problems.push_back(
+              fmt::format("stage '{}' needs {}, which is not part of this job", s.name, d));
+        }
+      }
+      continue;
+    }
     const auto it = std::find_if(hellos.begin(), hellos.end(),
                                  [&](const protocol::Hello& h) { return h.program == s.program; });
     if (it == hellos.end()) {

@@ -13,12 +13,14 @@
 
 #include "capabilities.hpp"
 #include "driver_catalog.hpp"
+#include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/mpmd.hpp"
 #include "pbms/progress_meter.hpp"
 #include "pbms/units.hpp"
 #include "result_cache.hpp"
 #include "run_record.hpp"
 #include "scheduler.hpp"
+#include "stages/coupler_stage.hpp"
 
 namespace pbms::coupler {
 namespace {
@@ -78,6 +80,12 @@ YAML::Node resolve_references(const YAML::Node& node,
       }
       YAML::Node table = table_node(it->second, key);
       if (table.size() > 0) return table;
+      // A map output (a fitted potential) travels as YAML text.
+      const auto attr = it->second.attributes.find(key);
+      if (attr != it->second.attributes.end()) {
+        YAML::Node map = YAML::Load(attr->second);
+        if (map.IsMap()) return map;
+      }
     }
     throw Error(fmt::format("stage '{}' did not produce '{}'", stage, key));
   }
@@ -107,13 +115,6 @@ YAML::Node resolve_materials(const YAML::Node& materials,
     }
   }
   return out;
-}
-
-std::string dump(const YAML::Node& n) {
-  YAML::Emitter e;
-  e.SetDoublePrecision(17);
-  e << n;
-  return e.c_str();
 }
 
 class Daemon {
@@ -200,12 +201,16 @@ class Daemon {
 
   void run_stage(size_t index) {
     const auto& stage = wf_.stages[index];
+    if (stage.program == config::kCouplerProgram) {
+      run_coupler_stage(index);
+      return;
+    }
     protocol::RunStage rs;
     rs.index = static_cast<int32_t>(index);
     rs.name = stage.name;
     rs.kind = stage.kind;
-    rs.params_yaml = dump(resolve_references(stage.params, done_));
-    rs.materials_yaml = dump(resolve_materials(wf_.materials, done_));
+    rs.params_yaml = yaml_text(resolve_references(stage.params, done_));
+    rs.materials_yaml = yaml_text(resolve_materials(wf_.materials, done_));
     rs.run_dir = record_->dir().string();
     rs.seed = wf_.seed;
     record_->stage_started(stage);
@@ -250,6 +255,39 @@ class Daemon {
     finish_stage(stage, std::move(done));
   }
 
+  // A stage the coupler runs itself: it sends its own requests through the
+  // scheduler and shows one progress line.
+  void run_coupler_stage(size_t index) {
+    const auto& stage = wf_.stages[index];
+    config::StageConfig resolved = stage;
+    resolved.params = resolve_references(stage.params, done_);
+    record_->stage_started(stage);
+    log(fmt::format("stage {}/{} '{}' ({}) on the coupler, using {}", index + 1, wf_.stages.size(),
+                    stage.name, stage.kind, fmt::join(stage.drivers, ", ")));
+    CouplerStageContext ctx(scheduler_, resolved, resolve_materials(wf_.materials, done_), drivers_,
+                            record_->dir(), wf_.seed);
+    ProgressMeter meter(stage.name, opt_.terminal, "evaluation");
+    ProgressMeter file_meter(stage.name, false, "evaluation");
+    const auto t0 = Clock::now();
+    auto now = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+    ctx.log = [&](const std::string& line) { log(fmt::format("  {}: {}", stage.name, line)); };
+    ctx.progress = [&](int64_t n, int64_t total, const std::string& phase) {
+      record_->progress(stage.name, n, total, 0.0);
+      if (auto line = meter.update(n, total, -1.0, phase, now())) console_.progress(*line);
+      if (auto line = file_meter.update(n, total, -1.0, phase, now())) {
+        if (file_log_) file_log_->info(*line);
+      }
+    };
+    create_coupler_stage(stage.kind)->run(ctx);
+    console_.end_progress();
+    protocol::StageDone done;
+    done.stage = stage.name;
+    done.wall_s = now();
+    done.results = std::move(ctx.results());
+    log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
+    finish_stage(stage, std::move(done));
+  }
+
   void finish_stage(const config::StageConfig& stage, protocol::StageDone done) {
     record_->stage_finished(stage, done.results, done.wall_s);
     for (const auto& s : done.results.scalars) {
@@ -277,7 +315,7 @@ class Daemon {
       if (p.names_material && name && name.IsScalar()) own[name.Scalar()] = all[name.Scalar()];
     }
     protocol::RunStage keyed = rs;
-    keyed.materials_yaml = dump(own);
+    keyed.materials_yaml = yaml_text(own);
     const auto& link = scheduler_.link(stage.program);
     return cache_identity(keyed, link.hello.software,
                           file_digest(opt_.drivers_dir / stage.program));

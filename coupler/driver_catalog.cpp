@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "pbms/error.hpp"
+#include "stages/coupler_stage.hpp"
 
 namespace pbms::coupler {
 
@@ -36,6 +37,7 @@ std::vector<config::DriverDescription> discover_drivers(const std::filesystem::p
     out.push_back(config::driver_from_yaml(YAML::Load(text)));
   }
   if (out.empty()) throw Error(fmt::format("no drivers found in '{}'", dir.string()));
+  out.push_back(coupler_description());
   return out;
 }
 

@@ -9,6 +9,7 @@
 
 namespace pbms::coupler {
 
+// The drivers' descriptions, then the coupler's own (its coupler-side kinds).
 std::vector<config::DriverDescription> discover_drivers(const std::filesystem::path& dir);
 
 }  // namespace pbms::coupler

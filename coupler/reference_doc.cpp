@@ -89,8 +89,7 @@ std::string config_reference_markdown(const std::vector<config::DriverDescriptio
             "tables go to `results.h5`):\n\n| output | shape | unit | description |\n"
             "|---|---|---|---|\n";
         for (const auto& o : s.outputs) {
-          out += fmt::format("| `{}` | {} | {} | {} |\n", o.name,
-                             o.shape == config::OutputSpec::Shape::kScalar ? "scalar" : "table",
+          out += fmt::format("| `{}` | {} | {} | {} |\n", o.name, config::shape_name(o.shape),
                              o.unit, cell(o.doc));
         }
         out += "\n";

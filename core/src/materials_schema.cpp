@@ -97,7 +97,12 @@ Param materials_schema() {
                   "Cubic cell edge of the mesoparticle fcc crystal")
           .require()
           .above(0),
-      dpd_potential_schema(),
+      Param::integer("atoms_per_particle",
+                     "Atoms one mesoparticle stands for; volumes per atom (isotherms, the MD "
+                     "fit) divide by it")
+          .def(8)
+          .above(0),
+      dpd_potential_schema().referable(),
       Param::file("potential_file",
                   "A YAML file holding the `potential` map (what the MD->DPD fit writes); "
                   "give this or `potential`"),

@@ -21,9 +21,13 @@ std::string ProgressMeter::format(int64_t step, int64_t total, double sim_time_p
   const double eta = rate > 0 ? static_cast<double>(total - step) / rate : NAN;
   const double pct = total > 0 ? 100.0 * static_cast<double>(step) / static_cast<double>(total) : 0;
   // The first report has no elapsed time to measure a rate against.
-  const std::string speed = rate > 0 ? fmt::format("{:.0f} steps/s", rate) : "- steps/s";
-  std::string line = fmt::format("[{}] step {}/{} ({:3.0f}%) | {:.2f} ps | {} | ETA {}", label_,
-                                 step, total, pct, sim_time_ps, speed, format_duration(eta));
+  const std::string speed = rate >= 100 ? fmt::format("{:.0f} {}s/s", rate, item_)
+                            : rate > 0  ? fmt::format("{:.3g} {}s/s", rate, item_)
+                                        : fmt::format("- {}s/s", item_);
+  // A negative simulated time: the work has none (a fit's evaluations).
+  const std::string sim = sim_time_ps >= 0 ? fmt::format(" | {:.2f} ps", sim_time_ps) : "";
+  std::string line = fmt::format("[{}] {} {}/{} ({:3.0f}%){} | {} | ETA {}", label_, item_, step,
+                                 total, pct, sim, speed, format_duration(eta));
   if (!phase.empty()) line += " | " + phase;
   return line;
 }

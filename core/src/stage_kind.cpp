@@ -1,6 +1,27 @@
 #include "pbms/config/stage_kind.hpp"
 
 namespace pbms::config {
+namespace {
+
+OutputSpec::Shape shape_from_name(const std::string& name) {
+  if (name == "table") return OutputSpec::Shape::kTable;
+  if (name == "map") return OutputSpec::Shape::kMap;
+  return OutputSpec::Shape::kScalar;
+}
+
+}  // namespace
+
+const char* shape_name(OutputSpec::Shape shape) {
+  switch (shape) {
+    case OutputSpec::Shape::kScalar:
+      return "scalar";
+    case OutputSpec::Shape::kTable:
+      return "table";
+    case OutputSpec::Shape::kMap:
+      return "map";
+  }
+  return "scalar";
+}
 
 const OutputSpec* StageKindSpec::output(std::string_view name) const {
   for (const auto& o : outputs) {
@@ -27,13 +48,14 @@ YAML::Node to_yaml(const StageKindSpec& s) {
   for (const auto& o : s.outputs) {
     YAML::Node on;
     on["name"] = o.name;
-    on["shape"] = o.shape == OutputSpec::Shape::kScalar ? "scalar" : "table";
+    on["shape"] = shape_name(o.shape);
     on["unit"] = o.unit;
     on["doc"] = o.doc;
     n["outputs"].push_back(on);
   }
   n["material_kinds"] = s.material_kinds;
   if (s.cacheable) n["cacheable"] = true;
+  if (!s.uses.empty()) n["uses"] = s.uses;
   return n;
 }
 
@@ -46,14 +68,14 @@ StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
   for (const auto& on : n["outputs"]) {
     OutputSpec o;
     o.name = on["name"].as<std::string>();
-    o.shape = on["shape"].as<std::string>() == "scalar" ? OutputSpec::Shape::kScalar
-                                                        : OutputSpec::Shape::kTable;
+    o.shape = shape_from_name(on["shape"].as<std::string>());
     o.unit = on["unit"].as<std::string>("");
     o.doc = on["doc"].as<std::string>("");
     s.outputs.push_back(o);
   }
   if (n["material_kinds"]) s.material_kinds = n["material_kinds"].as<std::vector<std::string>>();
   s.cacheable = n["cacheable"] && n["cacheable"].as<bool>();
+  if (n["uses"]) s.uses = n["uses"].as<std::vector<std::string>>();
   return s;
 }
 

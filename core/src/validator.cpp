@@ -226,7 +226,9 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
     r.target = node["from"].Scalar();
     r.line = node["from"].Mark().line + 1;
     r.column = node["from"].Mark().column + 1;
-    r.wants_table = p.kind == ParamKind::kTable;
+    r.wants = p.kind == ParamKind::kTable ? OutputSpec::Shape::kTable
+              : p.kind == ParamKind::kMap ? OutputSpec::Shape::kMap
+                                          : OutputSpec::Shape::kScalar;
     references_.push_back(r);
     return YAML::Clone(node);
   }

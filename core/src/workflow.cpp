@@ -71,6 +71,18 @@ bool check_text(const std::string& text, Validator& v) {
   return true;
 }
 
+std::string_view shape_phrase(OutputSpec::Shape shape) {
+  switch (shape) {
+    case OutputSpec::Shape::kTable:
+      return "a table";
+    case OutputSpec::Shape::kMap:
+      return "a map";
+    case OutputSpec::Shape::kScalar:
+      break;
+  }
+  return "a single number";
+}
+
 // The first stage that names each material.
 std::map<std::string, int> first_stage_using(const std::vector<Reference>& refs) {
   std::map<std::string, int> first;
@@ -103,7 +115,9 @@ std::filesystem::path Workflow::run_dir() const {
 std::vector<std::string> Workflow::programs() const {
   std::vector<std::string> out;
   for (const auto& s : stages) {
-    if (std::find(out.begin(), out.end(), s.program) == out.end()) out.push_back(s.program);
+    for (const auto& d : s.drivers) {
+      if (std::find(out.begin(), out.end(), d) == out.end()) out.push_back(d);
+    }
   }
   return out;
 }
@@ -112,6 +126,7 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
   using units::Dimension;
   std::vector<Param> launch_fields;
   for (const auto& d : drivers) {
+    if (d.program == kCouplerProgram) continue;
     launch_fields.push_back(
         Param::integer(d.short_name, fmt::format("MPI ranks for {}", d.program)).def(1).above(0));
   }
@@ -276,12 +291,10 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
       v.error_at(m, r.key_path,
                  fmt::format("stage '{}' ({}) has no output '{}' (outputs: {}){}", sname,
                              spec->kind, oname, fmt::join(names, ", "), suggest(oname, names)));
-    } else if (out->shape != OutputSpec::Shape::kScalar && !r.wants_table) {
+    } else if (out->shape != r.wants) {
       v.error_at(m, r.key_path,
-                 fmt::format("output '{}' is a table; this key takes a single number", r.target));
-    } else if (out->shape == OutputSpec::Shape::kScalar && r.wants_table) {
-      v.error_at(m, r.key_path,
-                 fmt::format("output '{}' is a single number; this key takes a table", r.target));
+                 fmt::format("output '{}' is {}; this key takes {}", r.target,
+                             shape_phrase(out->shape), shape_phrase(r.wants)));
     }
   }
 
@@ -325,6 +338,17 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     }
   }
 
+  // Checks a stage kind declares beside its code, once everything they
+  // read is known to be sound.
+  if (v.errors().empty() && file_errors.empty()) {
+    for (size_t i = 0; i < stage_specs.size(); ++i) {
+      if (!stage_specs[i] || !stage_specs[i]->check) continue;
+      const std::string sp = fmt::format("stages[{}]", i);
+      stage_specs[i]->check(
+          {v, stages[i], resolved["stages"][i], sp, resolved["materials"], drivers});
+    }
+  }
+
   result.errors = v.errors();
   result.errors.insert(result.errors.end(), file_errors.begin(), file_errors.end());
   if (!result.errors.empty()) return result;
@@ -341,6 +365,8 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     sc.name = stage_names[i];
     sc.kind = stage_specs[i]->kind;
     sc.program = stage_specs[i]->program;
+    sc.drivers =
+        sc.program == kCouplerProgram ? stage_specs[i]->uses : std::vector<std::string>{sc.program};
     sc.params = resolved["stages"][i];
     sc.line = stages[i].Mark().line + 1;
     wf.stages.push_back(sc);
@@ -371,6 +397,7 @@ std::string apply_rank_override(Workflow& wf, const std::vector<DriverDescriptio
   }
   if (count < 1) return fmt::format("--ranks '{}': the rank count must be at least 1", spec);
   for (const auto& d : drivers) {
+    if (d.program == kCouplerProgram) continue;
     if (d.short_name == name || d.program == name) {
       const auto progs = wf.programs();
       if (std::find(progs.begin(), progs.end(), d.program) != progs.end()) {

@@ -8,6 +8,13 @@
 
 namespace pbms {
 
+std::string yaml_text(const YAML::Node& node) {
+  YAML::Emitter e;
+  e.SetDoublePrecision(17);
+  e << node;
+  return e.c_str();
+}
+
 void write_yaml_atomic(const std::filesystem::path& path, const YAML::Node& node,
                        const std::string& header_comment) {
   const auto tmp = path.string() + ".tmp";

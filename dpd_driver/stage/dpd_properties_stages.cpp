@@ -175,7 +175,8 @@ config::StageKindSpec DpdIsothermStage::spec() {
       {"lattice_constant", OutputSpec::Shape::kScalar, "Å", "Reference (V0) lattice constant"},
       {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa",
        "-V dP/dV at the two states nearest V/V0 = 1"},
-      {"isotherm", OutputSpec::Shape::kTable, "", "volume_ratio, pressure, pressure_error"},
+      {"isotherm", OutputSpec::Shape::kTable, "",
+       "volume_ratio, volume_per_atom, pressure, pressure_error"},
   };
   return s;
 }
@@ -227,7 +228,14 @@ void DpdIsothermStage::run(StageContext& ctx) {
             "GPa");
       }
     }
+    // 4 particles per cubic cell of edge a0 (V/V0 = 1).
+    const double a0 = c.spec.lattice_constant;
+    const double atoms =
+        4.0 * ctx.material(p["material"].as<std::string>())["atoms_per_particle"].as<double>(8.0);
+    std::vector<double> volume(ratio.size());
+    for (std::size_t k = 0; k < ratio.size(); ++k) volume[k] = ratio[k] * a0 * a0 * a0 / atoms;
     r.add_column("isotherm", "volume_ratio", "1", ratio);
+    r.add_column("isotherm", "volume_per_atom", "Å^3", volume);
     r.add_column("isotherm", "pressure", "GPa", pressure);
     r.add_column("isotherm", "pressure_error", "GPa", error);
   });

@@ -12,11 +12,13 @@
 
 #include "driver_catalog.hpp"
 #include "pbms/config/workflow.hpp"
+#include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/comm.hpp"
 #include "scheduler.hpp"
 
 namespace {
 
+using pbms::yaml_text;
 using pbms::coupler::Answer;
 using pbms::coupler::Scheduler;
 using pbms::protocol::RequestId;
@@ -29,13 +31,6 @@ const std::string kDpd = "dpd_driver";
 Scheduler* g_scheduler = nullptr;
 pbms::config::Workflow* g_workflow = nullptr;
 
-std::string dump(const YAML::Node& n) {
-  YAML::Emitter e;
-  e.SetDoublePrecision(17);
-  e << n;
-  return e.c_str();
-}
-
 // Stage `name` of the config with its material's Morse parameters changed.
 RunStage request(const std::string& name, const std::map<std::string, double>& potential = {}) {
   const auto& wf = *g_workflow;
@@ -47,8 +42,8 @@ RunStage request(const std::string& name, const std::map<std::string, double>& p
     rs.index = static_cast<int32_t>(i);
     rs.name = name;
     rs.kind = wf.stages[i].kind;
-    rs.params_yaml = dump(wf.stages[i].params);
-    rs.materials_yaml = dump(materials);
+    rs.params_yaml = yaml_text(wf.stages[i].params);
+    rs.materials_yaml = yaml_text(materials);
     rs.run_dir = std::filesystem::temp_directory_path() / "pbms_scheduler_test";
     rs.seed = wf.seed;
     return rs;
@@ -117,7 +112,7 @@ TEST(Scheduler, FailedRequestLeavesTheDriverInService) {
   RunStage bad = request("static", {{"r0", 2.0}});
   YAML::Node params = YAML::Load(bad.params_yaml);
   params["zero_pressure"] = true;
-  bad.params_yaml = dump(params);
+  bad.params_yaml = yaml_text(params);
   const RequestId failed = g_scheduler->submit(kDpd, bad);
   const auto got = answers({failed});
   const auto* f = std::get_if<StageFailed>(&got.at(failed));

@@ -11,9 +11,12 @@ namespace pbms {
 
 class ProgressMeter {
  public:
-  ProgressMeter(std::string label, bool terminal) : label_(std::move(label)), terminal_(terminal) {}
+  // `item` names what is counted: "step", or "evaluation" for a fit.
+  ProgressMeter(std::string label, bool terminal, std::string item = "step")
+      : label_(std::move(label)), terminal_(terminal), item_(std::move(item)) {}
 
-  // `now_s` is wall time in seconds from any fixed origin. Returns the line
+  // `now_s` is wall time in seconds from any fixed origin; a negative
+  // `sim_time_ps` leaves simulated time out of the line. Returns the line
   // to print, or nothing if it is not yet due.
   std::optional<std::string> update(int64_t step, int64_t total, double sim_time_ps,
                                     const std::string& phase, double now_s);
@@ -24,6 +27,7 @@ class ProgressMeter {
  private:
   std::string label_;
   bool terminal_;
+  std::string item_;
   double start_s_ = -1.0;
   double last_print_s_ = -1.0;
   int last_decile_ = -1;

@@ -2,6 +2,7 @@
 // outputs later stages may reference, and the material kinds it accepts.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,17 +12,35 @@
 
 namespace pbms::config {
 
+class Validator;
+struct DriverDescription;
+
 struct OutputSpec {
-  enum class Shape { kScalar, kTable };
+  // kMap: a YAML map (a fitted potential), for keys of map kind.
+  enum class Shape { kScalar, kTable, kMap };
   std::string name;
   Shape shape = Shape::kScalar;
   std::string unit;  // metal units; "1" for dimensionless
   std::string doc;
 };
 
+// "scalar", "table" or "map".
+const char* shape_name(OutputSpec::Shape shape);
+
+// What a stage kind's own check sees, after the schema and the references
+// between stages have been checked and potential files read.
+struct StageCheck {
+  Validator& validator;
+  const YAML::Node& raw;        // the stage as written (marks for errors)
+  const YAML::Node& resolved;   // defaults filled, metal units
+  const std::string& path;      // "stages[3]"
+  const YAML::Node& materials;  // resolved `materials:`, potential files read
+  const std::vector<DriverDescription>& drivers;
+};
+
 struct StageKindSpec {
   std::string kind;     // "md_isotherm"
-  std::string program;  // "md_driver"
+  std::string program;  // "md_driver", or "coupler" for a kind the coupler runs itself
   std::string doc;
   std::vector<Param> params;  // besides the common `name` and `kind`
   std::vector<OutputSpec> outputs;
@@ -29,11 +48,19 @@ struct StageKindSpec {
   // A reference result (MD) that depends only on its input: the coupler
   // keeps it in <output>/.cache/ and reuses it instead of running again.
   bool cacheable = false;
+  // A coupler-side kind: the drivers it sends requests to.
+  std::vector<std::string> uses;
+  // Checks the schema cannot express (a fit's free parameters against the
+  // material's pair style); reports through the validator. Declared beside
+  // the kind's code, in-process only: never part of --describe.
+  std::function<void(const StageCheck&)> check;
 
   [[nodiscard]] const OutputSpec* output(std::string_view name) const;
 };
 
 // What `<driver> --describe` prints and the handshake carries.
+inline constexpr const char* kCouplerProgram = "coupler";
+
 struct DriverDescription {
   std::string program;     // "md_driver"
   std::string short_name;  // "md": the key in `launch:` and `--ranks md=2`

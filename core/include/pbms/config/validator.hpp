@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "pbms/config/param.hpp"
+#include "pbms/config/stage_kind.hpp"
 #include "pbms/error.hpp"
 
 namespace pbms::config {
@@ -19,8 +20,9 @@ struct Reference {
   enum class Target { kStageOutput, kMaterial };
   Target type = Target::kStageOutput;
   std::string key_path;
-  std::string target;        // "stage.output", or a material name
-  bool wants_table = false;  // the key takes a table output, not a number
+  std::string target;  // "stage.output", or a material name
+  // What the key takes: a number, a table (kTable keys) or a map.
+  OutputSpec::Shape wants = OutputSpec::Shape::kScalar;
   int line = 0, column = 0;
 };
 

@@ -21,8 +21,9 @@ namespace pbms::config {
 struct StageConfig {
   std::string name;
   std::string kind;
-  std::string program;  // driver that runs it
-  YAML::Node params;    // resolved: defaults filled, quantities in metal units
+  std::string program;               // driver that runs it, or "coupler" for a coupler-side kind
+  std::vector<std::string> drivers;  // drivers it sends requests to
+  YAML::Node params;                 // resolved: defaults filled, quantities in metal units
   int line = 0;
 };
 

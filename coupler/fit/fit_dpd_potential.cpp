@@ -1,0 +1,329 @@
+#include "fit/fit_dpd_potential.hpp"
+
+#include <cmath>
+#include <exception>
+#include <fstream>
+#include <limits>
+
+#include <fmt/format.h>
+#include <nlopt.hpp>
+
+#include "fit/dpd_judge.hpp"
+#include "fit/fit_objective.hpp"
+#include "pbms/error.hpp"
+#include "pbms/io/yaml_file.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::coupler::fit {
+namespace {
+
+constexpr const char* kDriver = "dpd_driver";
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct Evaluation {
+  int phase = 0;  // 0: global search, 1: local polish
+  double temperature = 0.0;
+  std::vector<double> params;
+  Judgement judgement;
+  Residuals residuals;
+  double objective = 0.0;  // what the optimiser saw (the penalty for a failure)
+};
+
+// Metal unit of a style parameter, for summary.yaml. Morse's alpha is the one
+// parameter whose dimension (1/length) the schema has no word for.
+std::string parameter_unit(const std::string& style, const std::string& name) {
+  if (style == "morse" && name == "alpha") return "1/Å";
+  const config::Param schema = config::dpd_potential_schema();
+  for (const auto& f : schema.variants.at(style)) {
+    if (f.name == name && f.dimension != units::Dimension::kNone) {
+      return std::string(units::canonical_symbol(f.dimension));
+    }
+  }
+  return "1";
+}
+
+nlopt::algorithm algorithm(const std::string& name) {
+  if (name == "crs2_lm") return nlopt::GN_CRS2_LM;
+  if (name == "direct_l") return nlopt::GN_DIRECT_L;
+  if (name == "bobyqa") return nlopt::LN_BOBYQA;
+  if (name == "sbplx") return nlopt::LN_SBPLX;
+  throw Error(fmt::format("unknown optimiser '{}'", name));
+}
+
+class Fit {
+ public:
+  Fit(CouplerStageContext& ctx, FitSettings settings)
+      : ctx_(ctx),
+        s_(std::move(settings)),
+        objective_(s_.isotherm, s_.elastic),
+        judge_(ctx, s_),
+        budget_(budget()) {}
+
+  void run() {
+    std::vector<double> x(s_.free.size());
+    for (size_t k = 0; k < x.size(); ++k) x[k] = to_unit(k, s_.free[k].start);
+    nlopt::srand(ctx_.seed());
+    const double final_t = s_.judge.temperature;
+    if (s_.optimizer.global != "none" && s_.optimizer.global_evaluations > 0) {
+      const double t = s_.optimizer.static_prefit ? 0.0 : final_t;
+      minimise(algorithm(s_.optimizer.global), 0, t, s_.optimizer.global_evaluations, x);
+      x = best_x(t).value_or(x);
+    }
+    if (s_.optimizer.local != "none" && s_.optimizer.local_evaluations > 0) {
+      minimise(algorithm(s_.optimizer.local), 1, final_t, s_.optimizer.local_evaluations, x);
+    }
+    if (!best_x(final_t)) evaluate(x, 1, final_t);  // the answer is judged at T
+    report(*best_index(final_t));
+  }
+
+ private:
+  struct Call {
+    Fit* fit;
+    int phase;
+    double temperature;
+    std::exception_ptr error;
+    nlopt::opt* opt;
+  };
+
+  int budget() const {
+    int n = 0;
+    if (s_.optimizer.global != "none") n += s_.optimizer.global_evaluations;
+    if (s_.optimizer.local != "none") n += s_.optimizer.local_evaluations;
+    return std::max(n, 1);
+  }
+
+  double to_unit(size_t k, double v) const {
+    const auto& f = s_.free[k];
+    return f.upper > f.lower ? (v - f.lower) / (f.upper - f.lower) : 0.0;
+  }
+  double from_unit(size_t k, double u) const {
+    const auto& f = s_.free[k];
+    return f.lower + u * (f.upper - f.lower);
+  }
+
+  YAML::Node potential_of(const std::vector<double>& params) const {
+    YAML::Node p = YAML::Clone(s_.start_potential);
+    for (size_t k = 0; k < params.size(); ++k) p[s_.free[k].name] = params[k];
+    return p;
+  }
+
+  double evaluate(const std::vector<double>& x, int phase, double temperature) {
+    Evaluation e;
+    e.phase = phase;
+    e.temperature = temperature;
+    for (size_t k = 0; k < x.size(); ++k) e.params.push_back(from_unit(k, x[k]));
+    e.judgement = judge_.judge(potential_of(e.params), temperature);
+    if (e.judgement.ok) {
+      e.residuals = objective_.residuals(e.judgement);
+      e.objective = objective_.value(e.residuals);
+      penalty_.seen(e.objective);
+    } else {
+      e.objective = penalty_.value();
+    }
+    evaluations_.push_back(e);
+    show_progress(e);
+    return e.objective;
+  }
+
+  void show_progress(const Evaluation& e) {
+    const auto best = best_index(e.temperature);
+    const std::string best_text =
+        best ? fmt::format("best {:.4g}", evaluations_[*best].objective) : "no success yet";
+    const std::string failed = e.judgement.ok ? "" : " (failed: " + e.judgement.reason + ")";
+    ctx_.progress(static_cast<int64_t>(evaluations_.size()), budget_,
+                  fmt::format("{} at {:g} K, {}{}", e.phase == 0 ? "global" : "local",
+                              e.temperature, best_text, failed));
+    if (!e.judgement.ok) {
+      ctx_.log(fmt::format("evaluation {} failed, penalty {:.4g}: {}", evaluations_.size(),
+                           e.objective, e.judgement.reason));
+    }
+  }
+
+  static double call(const std::vector<double>& x, std::vector<double>& /*grad*/, void* data) {
+    auto* c = static_cast<Call*>(data);
+    try {
+      return c->fit->evaluate(x, c->phase, c->temperature);
+    } catch (...) {
+      c->error = std::current_exception();
+      c->opt->force_stop();
+      return std::numeric_limits<double>::max();
+    }
+  }
+
+  void minimise(nlopt::algorithm a, int phase, double temperature, int evaluations,
+                std::vector<double> x) {
+    nlopt::opt opt(a, static_cast<unsigned>(x.size()));
+    opt.set_lower_bounds(std::vector<double>(x.size(), 0.0));
+    opt.set_upper_bounds(std::vector<double>(x.size(), 1.0));
+    opt.set_maxeval(evaluations);
+    opt.set_xtol_abs(s_.optimizer.x_tolerance);
+    opt.set_ftol_abs(s_.optimizer.f_tolerance);
+    Call c{this, phase, temperature, nullptr, &opt};
+    opt.set_min_objective(call, &c);
+    double value = 0.0;
+    try {
+      opt.optimize(x, value);
+    } catch (const nlopt::roundoff_limited&) {
+      // Converged as far as round-off allows: the best point stands.
+    } catch (const nlopt::forced_stop&) {
+    }
+    if (c.error) std::rethrow_exception(c.error);
+  }
+
+  std::optional<size_t> best_index(double temperature) const {
+    std::optional<size_t> best;
+    for (size_t i = 0; i < evaluations_.size(); ++i) {
+      const auto& e = evaluations_[i];
+      if (!e.judgement.ok || e.temperature != temperature) continue;
+      if (!best || e.objective < evaluations_[*best].objective) best = i;
+    }
+    return best;
+  }
+
+  std::optional<std::vector<double>> best_x(double temperature) const {
+    const auto i = best_index(temperature);
+    if (!i) return std::nullopt;
+    std::vector<double> x;
+    for (size_t k = 0; k < s_.free.size(); ++k) x.push_back(to_unit(k, evaluations_[*i].params[k]));
+    return x;
+  }
+
+  void report(size_t best) {
+    const Evaluation& e = evaluations_[best];
+    auto& r = ctx_.results();
+    const std::string style = s_.start_potential["style"].as<std::string>();
+    r.add_scalar("objective", e.objective, "1");
+    r.add_scalar("max_residual_trained", objective_.max_trained(e.residuals), "1");
+    if (s_.isotherm) {
+      r.add_scalar("max_residual_held_out", objective_.max_held_out(e.residuals), "1");
+    }
+    r.add_scalar("evaluations", static_cast<double>(evaluations_.size()), "1");
+    int failed = 0;
+    for (const auto& x : evaluations_) failed += x.judgement.ok ? 0 : 1;
+    r.add_scalar("failed_evaluations", failed, "1");
+    for (size_t k = 0; k < s_.free.size(); ++k) {
+      r.add_scalar(s_.free[k].name, e.params[k], parameter_unit(style, s_.free[k].name));
+    }
+    write_potential(potential_of(e.params));
+    log_table();
+    if (s_.isotherm) isotherm_table(e);
+    if (s_.elastic) elastic_table(e);
+  }
+
+  void write_potential(const YAML::Node& potential) {
+    const std::string text = yaml_text(potential);
+    const auto file = ctx_.stage_dir() / "potential.yaml";
+    std::ofstream f(file);
+    f << fmt::format(
+        "# DPD potential fitted by stage '{}' (fit_dpd_potential) to its targets at {:g} K.\n"
+        "# The format of configs/potentials/*.yaml: use it as a material's potential_file.\n",
+        ctx_.stage().name, s_.judge.temperature);
+    f << text << "\n";
+    if (!f) throw Error(fmt::format("cannot write {}", file.string()));
+    ctx_.results().files.push_back(
+        (std::filesystem::path(ctx_.stage().name) / "potential.yaml").string());
+    ctx_.results().attributes["potential"] = text;
+  }
+
+  void log_table() {
+    auto& r = ctx_.results();
+    const std::string t = "evaluation_log";
+    std::vector<double> index, phase, temp, status, objective, wall;
+    for (size_t i = 0; i < evaluations_.size(); ++i) {
+      const auto& e = evaluations_[i];
+      index.push_back(static_cast<double>(i + 1));
+      phase.push_back(e.phase);
+      temp.push_back(e.temperature);
+      status.push_back(e.judgement.ok ? 1.0 : 0.0);
+      objective.push_back(e.objective);
+      wall.push_back(e.judgement.wall_s);
+      if (!e.judgement.ok)
+        r.attributes[fmt::format("evaluation_{}_failure", i + 1)] = e.judgement.reason;
+    }
+    r.add_column(t, "evaluation", "1", index);
+    r.add_column(t, "phase", "1", phase);
+    r.add_column(t, "temperature", "K", temp);
+    r.add_column(t, "status", "1", status);
+    r.add_column(t, "objective", "1", objective);
+    r.add_column(t, "wall_s", "s", wall);
+    const std::string style = s_.start_potential["style"].as<std::string>();
+    for (size_t k = 0; k < s_.free.size(); ++k) {
+      std::vector<double> v;
+      for (const auto& e : evaluations_) v.push_back(e.params[k]);
+      r.add_column(t, s_.free[k].name, parameter_unit(style, s_.free[k].name), v);
+    }
+    if (s_.isotherm) {
+      for (size_t row = 0; row < s_.isotherm->pressure.size(); ++row) {
+        std::vector<double> v;
+        for (const auto& e : evaluations_) {
+          v.push_back(e.judgement.ok ? e.judgement.volume_per_atom[row] : kNaN);
+        }
+        r.add_column(t, fmt::format("volume_per_atom_{}", row), "Å^3", v);
+      }
+    }
+    if (s_.elastic) {
+      const auto gpa = [](const std::optional<double>& c) {
+        return c ? *c / units::kBarPerGPa : kNaN;
+      };
+      std::vector<double> c11, c12, c44;
+      for (const auto& e : evaluations_) {
+        c11.push_back(gpa(e.judgement.c11));
+        c12.push_back(gpa(e.judgement.c12));
+        c44.push_back(gpa(e.judgement.c44));
+      }
+      r.add_column(t, "c11", "GPa", c11);
+      r.add_column(t, "c12", "GPa", c12);
+      r.add_column(t, "c44", "GPa", c44);
+    }
+  }
+
+  void isotherm_table(const Evaluation& e) {
+    const IsothermTarget& iso = *s_.isotherm;
+    std::vector<double> held(iso.held_out.begin(), iso.held_out.end());
+    auto& r = ctx_.results();
+    r.add_column("isotherm", "pressure", "bar", iso.pressure);
+    r.add_column("isotherm", "volume_per_atom_target", "Å^3", iso.volume_per_atom);
+    r.add_column("isotherm", "volume_per_atom", "Å^3", e.judgement.volume_per_atom);
+    r.add_column("isotherm", "pressure_std_error", "bar", e.judgement.pressure_error);
+    r.add_column("isotherm", "residual", "1", e.residuals.isotherm);
+    r.add_column("isotherm", "held_out", "1", held);
+  }
+
+  void elastic_table(const Evaluation& e) {
+    const ElasticTarget& el = *s_.elastic;
+    const auto gpa = [](const std::optional<double>& c) {
+      return c ? *c / units::kBarPerGPa : kNaN;
+    };
+    auto& r = ctx_.results();
+    r.add_column("elastic", "index", "1", {11, 12, 44});
+    r.add_column("elastic", "target", "GPa", {gpa(el.c11), gpa(el.c12), gpa(el.c44)});
+    r.add_column("elastic", "fitted", "GPa",
+                 {gpa(e.judgement.c11), gpa(e.judgement.c12), gpa(e.judgement.c44)});
+    r.add_column(
+        "elastic", "fitted_std_error", "GPa",
+        {gpa(e.judgement.c11_error), gpa(e.judgement.c12_error), gpa(e.judgement.c44_error)});
+  }
+
+  CouplerStageContext& ctx_;
+  FitSettings s_;
+  FitObjective objective_;
+  DpdJudge judge_;
+  FailurePenalty penalty_;
+  std::vector<Evaluation> evaluations_;
+  int budget_;
+};
+
+}  // namespace
+
+void FitDpdPotentialStage::run(CouplerStageContext& ctx) {
+  FitSettings settings = FitSettings::from_yaml(ctx.params(), ctx.materials());
+  Scheduler& scheduler = ctx.scheduler();
+  const int whole = scheduler.link(kDriver).app.size;
+  scheduler.regroup(kDriver, settings.group_ranks);
+  ctx.log(fmt::format("fit on {} group{} of dpd_driver", scheduler.groups(kDriver),
+                      scheduler.groups(kDriver) == 1 ? "" : "s"));
+  Fit(ctx, std::move(settings)).run();
+  scheduler.regroup(kDriver, whole);
+}
+
+}  // namespace pbms::coupler::fit

@@ -1,0 +1,60 @@
+// How far a judged candidate is from the targets: relative residuals per
+// target and the weighted objective the optimiser minimises. Pure arithmetic,
+// no MPI, so that it is tested on its own.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/fit_settings.hpp"
+
+namespace pbms::coupler::fit {
+
+// What dpd_driver answered for one candidate, in metal units.
+struct Judgement {
+  bool ok = true;
+  std::string reason;                   // why it failed, when !ok
+  std::vector<double> volume_per_atom;  // Å^3, one per isotherm row
+  std::vector<double> pressure_error;   // bar, block standard error at each row
+  std::optional<double> c11, c12, c44;  // bar
+  std::optional<double> c11_error, c12_error, c44_error;
+  double wall_s = 0.0;
+};
+
+struct Residuals {
+  std::vector<double> isotherm;         // (V - V_target) / V_target per row
+  std::optional<double> c11, c12, c44;  // (C - C_target) / C_target
+};
+
+class FitObjective {
+ public:
+  FitObjective(std::optional<IsothermTarget> isotherm, std::optional<ElasticTarget> elastic)
+      : isotherm_(std::move(isotherm)), elastic_(std::move(elastic)) {}
+
+  [[nodiscard]] Residuals residuals(const Judgement& j) const;
+  // w_iso * mean over trained rows of r^2 + w_el * mean over the targeted
+  // constants of r^2. Exactly zero where the judge reproduces the targets.
+  [[nodiscard]] double value(const Residuals& r) const;
+  [[nodiscard]] double max_trained(const Residuals& r) const;
+  [[nodiscard]] double max_held_out(const Residuals& r) const;
+
+ private:
+  std::optional<IsothermTarget> isotherm_;
+  std::optional<ElasticTarget> elastic_;
+};
+
+// The objective given to the optimiser for a failed candidate: twice the
+// worst objective seen so far, and at least 1 (a 100 % residual everywhere).
+// Finite and of the scale of the landscape, so that a local model built
+// around failures stays usable; a fixed huge value would dominate it.
+class FailurePenalty {
+ public:
+  void seen(double objective);
+  [[nodiscard]] double value() const;
+
+ private:
+  double worst_ = 0.0;
+};
+
+}  // namespace pbms::coupler::fit

@@ -1,0 +1,321 @@
+#include "fit/fit_settings.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "pbms/config/validator.hpp"
+#include "pbms/config/workflow.hpp"
+#include "pbms/error.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::coupler::fit {
+namespace {
+
+using config::OutputSpec;
+using config::Param;
+using units::Dimension;
+
+// A map key that may be left out whole: its default is the map of its
+// children's defaults, so the typed settings never guess.
+Param defaulted(Param map) {
+  YAML::Node d(YAML::NodeType::Map);
+  for (const auto& f : map.fields) {
+    if (f.default_value) d[f.name] = YAML::Clone(*f.default_value);
+  }
+  map.default_value = d;
+  return map;
+}
+
+Param isotherm_param() {
+  return Param::map(
+      "isotherm",
+      {Param::table("table",
+                    "The MD isotherm, {from: <md_isotherm stage>.isotherm}: columns pressure "
+                    "and volume_per_atom")
+           .require(),
+       Param::real("weight", Dimension::kNone, "Weight of the isotherm in the objective")
+           .def(1.0)
+           .at_least(0),
+       Param::int_list("held_out",
+                       "Rows (0-based) computed and reported but kept out of the objective; "
+                       "default every second row from the second")},
+      "Target: volume per atom against pressure");
+}
+
+Param elastic_param() {
+  const auto constant = [](const char* name) {
+    return Param::real(name, Dimension::kPressure,
+                       fmt::format("Target {} (MD at the fit's T)", name))
+        .above(0)
+        .referable();
+  };
+  return Param::map("elastic",
+                    {constant("c11"), constant("c12"), constant("c44"),
+                     Param::real("weight", Dimension::kNone, "Weight of the elastic constants")
+                         .def(1.0)
+                         .at_least(0)},
+                    "Target: cubic elastic constants of the crystal at the fit's temperature");
+}
+
+Param optimizer_param() {
+  return defaulted(Param::map(
+      "optimizer",
+      {Param::choice("global", {"crs2_lm", "direct_l", "none"},
+                     "NLopt global search over the bounds (CRS2 with local mutation, or "
+                     "locally biased DIRECT)")
+           .def("crs2_lm"),
+       Param::choice("local", {"bobyqa", "sbplx", "none"},
+                     "NLopt local polish from the best point of the global search")
+           .def("bobyqa"),
+       Param::integer("global_evaluations", "Evaluation budget of the global search")
+           .def(60)
+           .at_least(0),
+       Param::integer("local_evaluations", "Evaluation budget of the local polish")
+           .def(60)
+           .at_least(0),
+       Param::real("x_tolerance", Dimension::kNone,
+                   "Stop when a step changes every parameter by less than this fraction of "
+                   "its bounds")
+           .def(1e-4)
+           .above(0),
+       Param::real("f_tolerance", Dimension::kNone, "Stop when the objective changes by less")
+           .def(1e-10)
+           .above(0),
+       Param::boolean("static_prefit",
+                      "Judge the global search on the static (0 K) crystal, which costs "
+                      "milliseconds; the local polish runs at the fit's temperature")
+           .def(false)},
+      "The optimiser (NLopt), seeded by the run's seed"));
+}
+
+Param judge_param() {
+  return defaulted(Param::map(
+      "judge",
+      {Param::integer("cells", "Crystal edge in lattice constants; 0: the fewest the cutoff allows")
+           .def(0)
+           .at_least(0),
+       Param::integer("equilibration_steps", "DPD steps before sampling, per state")
+           .def(200)
+           .at_least(0),
+       Param::integer("sampling_steps", "DPD steps sampled, per state").def(1000).at_least(10),
+       Param::real("gamma", Dimension::kNone, "Sampling friction, g/mol/ps").def(1.0e4).above(0),
+       Param::real("time_step", Dimension::kTime, "DPD time step").def(0.01).above(0)},
+      "How dpd_driver judges a candidate (dpd_isotherm and dpd_elastic requests)"));
+}
+
+const Param* style_field(const std::string& style, const std::string& name) {
+  static const Param schema = config::dpd_potential_schema();
+  const auto it = schema.variants.find(style);
+  if (it == schema.variants.end()) return nullptr;
+  for (const auto& f : it->second) {
+    if (f.name == name && f.kind == config::ParamKind::kReal) return &f;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> style_parameters(const std::string& style) {
+  std::vector<std::string> out;
+  const Param schema = config::dpd_potential_schema();
+  const auto it = schema.variants.find(style);
+  if (it == schema.variants.end()) return out;
+  for (const auto& f : it->second) {
+    if (f.kind == config::ParamKind::kReal) out.push_back(f.name);
+  }
+  return out;
+}
+
+void check_free(const config::StageCheck& c, const YAML::Node& potential) {
+  const YAML::Node raw_free = c.raw["free"];
+  if (!raw_free || !raw_free.IsMap() || raw_free.size() == 0) {
+    c.validator.error(raw_free ? raw_free : c.raw, c.path + ".free",
+                      "name at least one free parameter with its bounds [lower, upper]");
+    return;
+  }
+  if (!potential.IsMap() || !potential["style"]) return;  // {from: ...}: known at run time
+  const std::string style = potential["style"].Scalar();
+  for (const auto& kv : raw_free) {
+    const std::string name = kv.first.Scalar();
+    const std::string path = c.path + ".free." + name;
+    if (!style_field(style, name)) {
+      const auto names = style_parameters(style);
+      c.validator.error(kv.first, path,
+                        fmt::format("pair style '{}' has no parameter '{}' (it has: {}){}", style,
+                                    name, fmt::join(names, ", "), config::suggest(name, names)));
+      continue;
+    }
+    const auto bounds = c.resolved["free"][name].as<std::vector<double>>();
+    if (bounds[0] > bounds[1]) {
+      c.validator.error(
+          kv.second, path,
+          fmt::format("lower bound {} is above upper bound {}", bounds[0], bounds[1]));
+      continue;
+    }
+    const double start = potential[name].as<double>();
+    if (start < bounds[0] || start > bounds[1]) {
+      c.validator.error(kv.second, path,
+                        fmt::format("the start {} (material '{}') is outside [{}, {}]", start,
+                                    c.resolved["material"].Scalar(), bounds[0], bounds[1]));
+    }
+  }
+}
+
+void check_fit(const config::StageCheck& c) {
+  const std::string material = c.resolved["material"].Scalar();
+  check_free(c, c.materials[material]["potential"]);
+  if (!c.raw["isotherm"] && !c.raw["elastic"]) {
+    c.validator.error(c.raw, c.path, "the fit has no target: give `isotherm`, `elastic` or both");
+  }
+  const YAML::Node elastic = c.raw["elastic"];
+  if (elastic && elastic.IsMap() && !elastic["c11"] && !elastic["c12"] && !elastic["c44"]) {
+    c.validator.error(elastic, c.path + ".elastic", "give at least one of c11, c12, c44");
+  }
+  const YAML::Node iso = c.resolved["isotherm"];
+  const YAML::Node held = iso ? iso["held_out"] : YAML::Node();
+  if (held && held.IsSequence()) {
+    for (size_t i = 0; i < held.size(); ++i) {
+      if (held[i].as<int>() < 0) {
+        c.validator.error(c.raw["isotherm"]["held_out"][i],
+                          fmt::format("{}.isotherm.held_out[{}]", c.path, i),
+                          "a row index cannot be negative");
+      }
+    }
+  }
+}
+
+// A column of a resolved table reference, in metal units.
+std::vector<double> column(const YAML::Node& table, const std::string& name,
+                           const std::string& alternative = "") {
+  YAML::Node c = table[name];
+  if (!c && !alternative.empty()) c = table[alternative];
+  if (!c || !c["values"]) {
+    throw Error(fmt::format("the isotherm target has no column '{}'", name));
+  }
+  const std::string unit = c["unit"].as<std::string>("");
+  auto values = c["values"].as<std::vector<double>>();
+  for (auto& v : values) v = units::to_metal(v, unit);
+  return values;
+}
+
+}  // namespace
+
+std::vector<bool> default_held_out(size_t n) {
+  std::vector<bool> out(n, false);
+  for (size_t i = 1; i < n; i += 2) out[i] = true;
+  return out;
+}
+
+config::StageKindSpec fit_dpd_potential_spec() {
+  config::StageKindSpec s;
+  s.kind = "fit_dpd_potential";
+  s.program = config::kCouplerProgram;
+  s.uses = {"dpd_driver"};
+  s.doc =
+      "Fits a DPD pair style's parameters so that the DPD crystal at a temperature reproduces "
+      "MD targets (isotherm, elastic constants); dpd_driver judges every candidate";
+  s.material_kinds = {"dpd_mesoparticle"};
+  s.params = {
+      Param::identifier("material",
+                        "The dpd_mesoparticle to fit: its potential is the start and names the "
+                        "style; mass and lattice constant are kept")
+          .require()
+          .material(),
+      Param::real("temperature", Dimension::kTemperature, "Temperature of the targets")
+          .def(298.0)
+          .at_least(0),
+      isotherm_param(),
+      elastic_param(),
+      Param::map_of("free",
+                    Param::real_list("bounds", Dimension::kNone,
+                                     "[lower, upper] in the parameter's metal unit")
+                        .length(2, 2),
+                    "Free parameters of the style with their bounds; the others stay fixed")
+          .require(),
+      optimizer_param(),
+      judge_param(),
+      Param::integer("group_ranks",
+                     "dpd_driver ranks per judging group; groups judge state points side by "
+                     "side")
+          .def(1)
+          .above(0),
+  };
+  s.outputs = {
+      {"potential", OutputSpec::Shape::kMap, "", "The fitted potential (a potential file's map)"},
+      {"objective", OutputSpec::Shape::kScalar, "1", "Objective at the fitted parameters"},
+      {"max_residual_trained", OutputSpec::Shape::kScalar, "1",
+       "Largest |relative residual| over the trained targets"},
+      {"max_residual_held_out", OutputSpec::Shape::kScalar, "1",
+       "Largest |relative residual| over the held-out isotherm points"},
+      {"evaluations", OutputSpec::Shape::kScalar, "1", "Candidates judged"},
+      {"failed_evaluations", OutputSpec::Shape::kScalar, "1", "Candidates that failed"},
+      {"evaluation_log", OutputSpec::Shape::kTable, "",
+       "Per candidate: phase, parameters, objective, status, wall time, judged values"},
+      {"isotherm", OutputSpec::Shape::kTable, "",
+       "Per pressure: target and fitted volume per atom, residual, held out"},
+      {"elastic", OutputSpec::Shape::kTable, "", "C11, C12, C44: target and fitted"},
+  };
+  s.check = check_fit;
+  return s;
+}
+
+FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& materials) {
+  FitSettings f;
+  f.material = stage["material"].as<std::string>();
+  f.start_potential = YAML::Clone(materials[f.material]["potential"]);
+  for (const auto& kv : stage["free"]) {
+    const auto b = kv.second.as<std::vector<double>>();
+    const std::string name = kv.first.as<std::string>();
+    if (!f.start_potential[name]) {
+      throw Error(fmt::format("the start potential has no parameter '{}'", name));
+    }
+    f.free.push_back({name, b[0], b[1], f.start_potential[name].as<double>()});
+  }
+  f.judge.temperature = stage["temperature"].as<double>();
+  if (const YAML::Node iso = stage["isotherm"]) {
+    IsothermTarget t;
+    t.pressure = column(iso["table"], "pressure");
+    t.volume_per_atom = column(iso["table"], "volume_per_atom");
+    if (t.pressure.size() != t.volume_per_atom.size() || t.pressure.empty()) {
+      throw Error("the isotherm target's pressure and volume_per_atom columns differ in length");
+    }
+    t.weight = iso["weight"].as<double>();
+    t.held_out = default_held_out(t.pressure.size());
+    if (iso["held_out"]) {
+      t.held_out.assign(t.pressure.size(), false);
+      for (const int row : iso["held_out"].as<std::vector<int>>()) {
+        if (row >= static_cast<int>(t.pressure.size())) {
+          throw Error(fmt::format("isotherm.held_out: row {} is past the table's {} rows", row,
+                                  t.pressure.size()));
+        }
+        t.held_out[static_cast<size_t>(row)] = true;
+      }
+    }
+    f.isotherm = t;
+  }
+  if (const YAML::Node el = stage["elastic"]) {
+    ElasticTarget t;
+    if (el["c11"]) t.c11 = el["c11"].as<double>();
+    if (el["c12"]) t.c12 = el["c12"].as<double>();
+    if (el["c44"]) t.c44 = el["c44"].as<double>();
+    t.weight = el["weight"].as<double>();
+    f.elastic = t;
+  }
+  const YAML::Node o = stage["optimizer"];
+  f.optimizer.global = o["global"].as<std::string>();
+  f.optimizer.local = o["local"].as<std::string>();
+  f.optimizer.global_evaluations = o["global_evaluations"].as<int>();
+  f.optimizer.local_evaluations = o["local_evaluations"].as<int>();
+  f.optimizer.x_tolerance = o["x_tolerance"].as<double>();
+  f.optimizer.f_tolerance = o["f_tolerance"].as<double>();
+  f.optimizer.static_prefit = o["static_prefit"].as<bool>();
+  const YAML::Node j = stage["judge"];
+  f.judge.cells = j["cells"].as<int>();
+  f.judge.equilibration_steps = j["equilibration_steps"].as<int>();
+  f.judge.sampling_steps = j["sampling_steps"].as<int>();
+  f.judge.gamma = j["gamma"].as<double>();
+  f.judge.time_step = j["time_step"].as<double>();
+  f.group_ranks = stage["group_ranks"].as<int>();
+  return f;
+}
+
+}  // namespace pbms::coupler::fit

@@ -1,0 +1,78 @@
+// The input of a fit_dpd_potential stage: its schema (declared beside the
+// kind, published through `coupler describe`), the checks the schema cannot
+// express, and the typed settings read once from the resolved YAML.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/config/param.hpp"
+#include "pbms/config/stage_kind.hpp"
+
+namespace pbms::coupler::fit {
+
+struct FreeParameter {
+  std::string name;  // a key of the potential's style: "d0", "alpha"
+  double lower = 0.0, upper = 0.0;
+  double start = 0.0;  // the material's value
+};
+
+// The MD isotherm: volume per atom (Å^3) at each pressure (bar).
+struct IsothermTarget {
+  std::vector<double> pressure;
+  std::vector<double> volume_per_atom;
+  std::vector<bool> held_out;
+  double weight = 1.0;
+};
+
+// Elastic constants in bar; a constant not given is not a target.
+struct ElasticTarget {
+  std::optional<double> c11, c12, c44;
+  double weight = 1.0;
+};
+
+struct OptimizerSettings {
+  std::string global = "crs2_lm";  // crs2_lm | direct_l | none
+  std::string local = "bobyqa";    // bobyqa | sbplx | none
+  int global_evaluations = 60;
+  int local_evaluations = 60;
+  double x_tolerance = 1e-4;  // relative, in the unit box of the bounds
+  double f_tolerance = 1e-10;
+  bool static_prefit = false;  // global search on the static (0 K) crystal
+};
+
+// What every judging request shares besides the candidate's potential.
+struct JudgeSettings {
+  double temperature = 298.0;
+  int cells = 0;
+  int equilibration_steps = 200;
+  int sampling_steps = 1000;
+  double gamma = 1.0e4;
+  double time_step = 0.01;
+};
+
+struct FitSettings {
+  std::string material;
+  YAML::Node start_potential;  // the material's potential map
+  std::vector<FreeParameter> free;
+  std::optional<IsothermTarget> isotherm;
+  std::optional<ElasticTarget> elastic;
+  OptimizerSettings optimizer;
+  JudgeSettings judge;
+  int group_ranks = 1;
+
+  // From the resolved stage (references to tables replaced by tables) and
+  // the resolved materials. Throws pbms::Error for what only the run can
+  // see (a table without the columns a target needs).
+  static FitSettings from_yaml(const YAML::Node& stage, const YAML::Node& materials);
+};
+
+config::StageKindSpec fit_dpd_potential_spec();
+
+// Every second point of a ladder of n, starting with the second.
+std::vector<bool> default_held_out(size_t n);
+
+}  // namespace pbms::coupler::fit

@@ -1,0 +1,70 @@
+source "$(dirname "$0")/lib.sh"
+# fit_dpd_potential recovers potentials from targets the DPD engine computed
+# with them (static crystal, so no sampling noise: the tolerance is 1 %):
+#  - Morse, d0, alpha and r0 free, started 10-20 % away; its r0 bounds let
+#    candidates fall apart, and those are recorded as failed with a reason;
+#  - Sutton-Chen, epsilon, c and n free, from isotherm and elastic constants;
+#  - the Morse fit with a small budget on dpd_driver with 1 and 2 ranks
+#    (two one-rank judging groups) gives the same parameters, bit for bit.
+cfg="$ROOT/tests/integration/configs"
+"$PBMS" run "$cfg/fit_recovery_morse.yaml" > morse.txt 2>&1 || { cat morse.txt; fail "Morse fit"; }
+"$PBMS" run "$cfg/fit_recovery_sutton_chen.yaml" > sc.txt 2>&1 || { cat sc.txt; fail "Sutton-Chen fit"; }
+grep -q "\[fit\] evaluation .* evaluations/s | ETA .* best" runs/fit_recovery_morse/log.txt ||
+  fail "no progress lines (evaluation n of N, best objective, ETA) in the log"
+# A small budget, judged on one group and on two.
+sed -e 's/global_evaluations: 150/global_evaluations: 30/' -e 's/local_evaluations: 1000/local_evaluations: 30/' \
+    -e "s#\.\./\.\./\.\./configs#$ROOT/configs#" -e 's/name: fit_recovery_morse/name: PLACEHOLDER/' \
+    "$cfg/fit_recovery_morse.yaml" > small.yaml
+sed 's/PLACEHOLDER/small_1/' small.yaml > small_1.yaml
+sed 's/PLACEHOLDER/small_2/' small.yaml > small_2.yaml
+"$PBMS" run small_1.yaml --ranks dpd=1 > small_1.txt 2>&1 || { cat small_1.txt; fail "small fit, 1 rank"; }
+"$PBMS" run small_2.yaml --ranks dpd=2 > small_2.txt 2>&1 || { cat small_2.txt; fail "small fit, 2 ranks"; }
+grep -q "fit on 2 groups" runs/small_2/log.txt || fail "the 2-rank fit did not judge on two groups"
+"$PY" - "$cfg" <<'PYEOF'
+import sys, yaml, h5py
+cfg = sys.argv[1]
+bad = 0
+def check(ok, text):
+    global bad
+    bad += not ok
+    print(f"{'ok  ' if ok else 'FAIL'} {text}")
+
+def truth(config):
+    m = yaml.safe_load(open(f"{cfg}/{config}"))["materials"]["truth"]
+    if "potential" in m:
+        return m["potential"]
+    return yaml.safe_load(open(f"{cfg}/{m['potential_file']}"))
+
+for run, config, free in (("fit_recovery_morse", "fit_recovery_morse.yaml", ("d0", "alpha", "r0")),
+                          ("fit_recovery_sutton_chen", "fit_recovery_sutton_chen.yaml", ("epsilon", "c", "n"))):
+    t = truth(config)
+    start = yaml.safe_load(open(f"{cfg}/{config}"))["materials"]["start"]["potential"]
+    fit = yaml.safe_load(open(f"runs/{run}/summary.yaml"))["stages"]["fit"]["results"]
+    for k in free:
+        away = abs(start[k] - t[k]) / t[k]
+        check(0.1 <= away <= 0.2, f"{run}: {k} starts {away:.0%} away from the truth")
+        err = abs(fit[k]["value"] - t[k]) / t[k]
+        check(err < 0.01, f"{run}: {k} = {fit[k]['value']:.6g} against {t[k]} (relative error {err:.1e}, tolerance 1 %)")
+    written = yaml.safe_load(open(f"runs/{run}/fit/potential.yaml"))
+    check(all(written[k] == fit[k]["value"] for k in free) and written["style"] == t["style"],
+          f"{run}: fit/potential.yaml holds the fitted parameters")
+
+# Failed candidates: recorded with status 0, a penalty and a reason.
+h = h5py.File("runs/fit_recovery_morse/results.h5")["fit"]
+log = h["evaluation_log"]
+failed = [i for i, s in enumerate(log["status"][:]) if s == 0]
+check(len(failed) > 0, f"{len(failed)} of {len(log['status'])} Morse candidates failed (r0 bounds reach unstable crystals)")
+reasons = [h.attrs.get(f"evaluation_{i + 1}_failure") for i in failed]
+check(all(r is not None and b"unstable" in (r if isinstance(r, bytes) else r.encode()) for r in reasons),
+      "every failure is recorded with its reason")
+ok_obj = log["objective"][:][log["status"][:] == 1]
+check(all(log["objective"][i] >= 1.0 for i in failed), "failed candidates carry a penalty >= 1")
+
+# 1 and 2 judging groups: the same fit.
+a = yaml.safe_load(open("runs/small_1/summary.yaml"))["stages"]["fit"]["results"]
+b = yaml.safe_load(open("runs/small_2/summary.yaml"))["stages"]["fit"]["results"]
+for k in ("d0", "alpha", "r0", "objective", "evaluations"):
+    check(a[k]["value"] == b[k]["value"], f"1 vs 2 groups: {k} {a[k]['value']!r} == {b[k]['value']!r}")
+sys.exit(1 if bad else 0)
+PYEOF
+echo "1 passed, 0 failed"
