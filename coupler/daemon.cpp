@@ -162,7 +162,7 @@ class Daemon {
     for (const auto& l : scheduler_.links()) {
       layout.push_back({l.hello.program, l.app.size, l.app.first_world_rank});
     }
-    record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line);
+    record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line, opt_.resume);
     for (const auto& l : scheduler_.links()) record_->set_software(l.hello.software);
     setup_log();
     scheduler_.welcome(true, "");
@@ -265,7 +265,7 @@ class Daemon {
     log(fmt::format("stage {}/{} '{}' ({}) on the coupler, using {}", index + 1, wf_.stages.size(),
                     stage.name, stage.kind, fmt::join(stage.drivers, ", ")));
     CouplerStageContext ctx(scheduler_, resolved, resolve_materials(wf_.materials, done_), drivers_,
-                            record_->dir(), wf_.seed);
+                            record_->dir(), wf_.seed, opt_.resume);
     ProgressMeter meter(stage.name, opt_.terminal, "evaluation");
     ProgressMeter file_meter(stage.name, false, "evaluation");
     const auto t0 = Clock::now();

@@ -14,6 +14,7 @@ struct DaemonOptions {
   std::filesystem::path drivers_dir;
   std::vector<std::string> rank_overrides;
   bool terminal = false;
+  bool resume = false;  // keep the run directory; stages pick up what they recorded
   std::string command_line;
 };
 

@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
   daemon->add_option("config", config, "Workflow YAML")->required();
   daemon->add_option("--ranks", ranks, "Rank override PROGRAM=N");
   daemon->add_flag("--tty", terminal, "Refresh progress lines in place");
+  bool resume = false;
+  daemon->add_flag("--resume", resume, "Keep the run directory; stages resume what they recorded");
   daemon->add_option("--command", command_line, "Command line to record in the manifest");
 
   std::string run_dir, mpirun_log;
@@ -111,7 +113,7 @@ int main(int argc, char** argv) {
     }
     if (*daemon) {
       pbms::mpi::Environment env(argc, argv);
-      pbms::coupler::DaemonOptions opt{config, drivers_dir, ranks, terminal, command_line};
+      pbms::coupler::DaemonOptions opt{config, drivers_dir, ranks, terminal, resume, command_line};
       try {
         return pbms::coupler::run_daemon(opt);
       } catch (const std::exception& e) {

@@ -48,11 +48,12 @@ std::string now_iso8601() {
 }
 
 RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout>& layout,
-                     const std::string& command_line)
+                     const std::string& command_line, bool resume)
     : dir_(std::filesystem::absolute(wf.run_dir())) {
   // A rerun replaces the previous run of the same name, as LAMMPS replaces
-  // its log: the run directory always describes exactly one run.
-  std::filesystem::remove_all(dir_);
+  // its log: the run directory always describes exactly one run. A resumed
+  // run keeps it: its stages pick up what they recorded there.
+  if (!resume) std::filesystem::remove_all(dir_);
   std::filesystem::create_directories(dir_);
   write_yaml_atomic(dir_ / "config.yaml", wf.resolved,
                     fmt::format("resolved from {}: defaults filled in, quantities in metal units",

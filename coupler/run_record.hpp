@@ -24,10 +24,10 @@ struct ProgramLayout {
 
 class RunRecord {
  public:
-  // Clears and creates the run directory; writes config.yaml and a manifest
-  // with status "running".
+  // Clears and creates the run directory (keeps it with `resume`); writes
+  // config.yaml and a manifest with status "running".
   RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout>& layout,
-            const std::string& command_line);
+            const std::string& command_line, bool resume = false);
 
   [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }
   [[nodiscard]] std::filesystem::path log_path() const { return dir_ / "log.txt"; }

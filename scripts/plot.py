@@ -411,11 +411,68 @@ def plot_profiles_together(stages, outdir):
     return finish(fig, os.path.join(outdir, "profiles.png"))
 
 
+def plot_fit(stage, outdir):
+    """fit_dpd_potential: the objective per evaluation, the fitted isotherm
+    against its targets with residuals, and the elastic constants side by side."""
+    written = []
+    log = stage.tables.get("evaluation_log")
+    if log is not None and log.has("evaluation", "objective", "status"):
+        fig, ax = plt.subplots(figsize=(6.4, 4.0))
+        n, obj, ok = log["evaluation"], log["objective"], log["status"] > 0.5
+        local = log.get("phase")
+        for phase, colour, name in ((0, "tab:blue", "global search"), (1, "tab:green", "local polish")):
+            sel = ok & ((local == phase) if local is not None else True)
+            ax.semilogy(n[sel], obj[sel], ".", ms=3, color=colour, label=name)
+        if (~ok).any():
+            ax.semilogy(n[~ok], obj[~ok], "x", color="tab:red", ms=4, label="failed (penalty)")
+        best = np.minimum.accumulate(np.where(ok, obj, np.inf))
+        ax.semilogy(n, best, "-", color="black", lw=1, label="best so far")
+        ax.set_xlabel("evaluation")
+        ax.set_ylabel("objective")
+        ax.set_title(f"{stage.name}: objective per candidate")
+        ax.legend(fontsize=8)
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_objective.png"))
+    iso = stage.tables.get("isotherm")
+    if iso is not None and iso.has("pressure", "volume_per_atom", "volume_per_atom_target", "residual"):
+        p = iso["pressure"] / BAR_PER_GPA
+        held = iso["held_out"] > 0.5 if iso.has("held_out") else np.zeros(len(p), bool)
+        fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.0), sharex=True,
+                                          gridspec_kw={"height_ratios": [2, 1]})
+        top.plot(p, iso["volume_per_atom_target"], "o", mfc="none", color="black", label="target")
+        top.plot(p, iso["volume_per_atom"], "s-", ms=4, color="tab:orange", label="fitted DPD")
+        top.set_ylabel(label("volume per atom", "Å^3"))
+        top.legend(fontsize=8)
+        top.set_title(f"{stage.name}: isotherm")
+        r = 100 * iso["residual"]
+        bottom.axhline(0, color="grey", lw=0.8)
+        bottom.plot(p[~held], r[~held], "o", color="tab:orange", label="trained")
+        bottom.plot(p[held], r[held], "D", mfc="none", color="tab:purple", label="held out")
+        bottom.set_xlabel("pressure (GPa)")
+        bottom.set_ylabel("residual (%)")
+        bottom.legend(fontsize=8)
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_isotherm.png"))
+    el = stage.tables.get("elastic")
+    if el is not None and el.has("target", "fitted"):
+        fig, ax = plt.subplots(figsize=(5.0, 3.8))
+        x = np.arange(len(el["target"]))
+        names = [f"C{int(i)}" for i in el["index"]] if el.has("index") else [str(i) for i in x]
+        ax.bar(x - 0.2, el["target"], 0.4, label="target", color="grey")
+        err = el.get("fitted_std_error")
+        ax.bar(x + 0.2, el["fitted"], 0.4, yerr=err, label="fitted DPD", color="tab:orange")
+        ax.set_xticks(x, names)
+        ax.set_ylabel("GPa")
+        ax.set_title(f"{stage.name}: elastic constants")
+        ax.legend(fontsize=8)
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_elastic.png"))
+    return written
+
+
 PLOTTERS = {
     "mpm_run": plot_mpm_run,
     "md_isotherm": plot_isotherm,
     "md_tension": plot_tension,
     "md_elastic": plot_elastic,
+    "fit_dpd_potential": plot_fit,
 }
 
 

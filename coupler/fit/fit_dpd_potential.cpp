@@ -1,5 +1,6 @@
 #include "fit/fit_dpd_potential.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <nlopt.hpp>
 
 #include "fit/dpd_judge.hpp"
+#include "fit/evaluation_journal.hpp"
 #include "fit/fit_objective.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/yaml_file.hpp"
@@ -57,9 +59,11 @@ class Fit {
         s_(std::move(settings)),
         objective_(s_.isotherm, s_.elastic),
         judge_(ctx, s_),
+        journal_(ctx.stage_dir() / "evaluations.journal", ctx.resume()),
         budget_(budget()) {}
 
   void run() {
+    check_cutoff();
     std::vector<double> x(s_.free.size());
     for (size_t k = 0; k < x.size(); ++k) x[k] = to_unit(k, s_.free[k].start);
     nlopt::srand(ctx_.seed());
@@ -73,6 +77,11 @@ class Fit {
       minimise(algorithm(s_.optimizer.local), 1, final_t, s_.optimizer.local_evaluations, x);
     }
     if (!best_x(final_t)) evaluate(x, 1, final_t);  // the answer is judged at T
+    if (ctx_.resume()) {
+      ctx_.log(fmt::format("resumed: {} evaluations replayed from {}, {} judged now",
+                           journal_.replayed(), "evaluations.journal",
+                           evaluations_.size() - journal_.replayed()));
+    }
     report(*best_index(final_t));
   }
 
@@ -84,6 +93,14 @@ class Fit {
     std::exception_ptr error;
     nlopt::opt* opt;
   };
+
+  void check_cutoff() const {
+    const YAML::Node cutoff = s_.start_potential["cutoff"];
+    if (!s_.isotherm || !cutoff) return;
+    const auto& v = s_.isotherm->volume_per_atom;
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    check_cutoff_between_shells(cutoff.as<double>(), *lo, *hi, s_.atoms_per_particle);
+  }
 
   int budget() const {
     int n = 0;
@@ -112,7 +129,12 @@ class Fit {
     e.phase = phase;
     e.temperature = temperature;
     for (size_t k = 0; k < x.size(); ++k) e.params.push_back(from_unit(k, x[k]));
-    e.judgement = judge_.judge(potential_of(e.params), temperature);
+    if (auto recorded = journal_.replay(phase, temperature, e.params)) {
+      e.judgement = *recorded;
+    } else {
+      e.judgement = judge_.judge(potential_of(e.params), temperature);
+      journal_.record({phase, temperature, e.params, e.judgement});
+    }
     if (e.judgement.ok) {
       e.residuals = objective_.residuals(e.judgement);
       e.objective = objective_.value(e.residuals);
@@ -308,6 +330,7 @@ class Fit {
   FitSettings s_;
   FitObjective objective_;
   DpdJudge judge_;
+  EvaluationJournal journal_;
   FailurePenalty penalty_;
   std::vector<Evaluation> evaluations_;
   int budget_;

@@ -1,6 +1,7 @@
 #include "fit/fit_settings.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -199,6 +200,23 @@ std::vector<double> column(const YAML::Node& table, const std::string& name,
 
 }  // namespace
 
+void check_cutoff_between_shells(double cutoff, double v_min, double v_max, int atoms_per_particle,
+                                 double margin) {
+  // Four particles per cubic cell; shell n of fcc lies at a sqrt(n / 2).
+  const double a_min = std::cbrt(4.0 * atoms_per_particle * v_min);
+  const double a_max = std::cbrt(4.0 * atoms_per_particle * v_max);
+  for (int n = 1; a_min * std::sqrt(n / 2.0) * (1.0 - margin) <= cutoff; ++n) {
+    const double lo = a_min * std::sqrt(n / 2.0), hi = a_max * std::sqrt(n / 2.0);
+    if (cutoff >= lo * (1.0 - margin) && cutoff <= hi * (1.0 + margin)) {
+      throw Error(fmt::format(
+          "the cutoff {:g} Å lies on neighbour shell {} of the crystal, which spans {:.3f} to "
+          "{:.3f} Å over the targets' volumes (±{:g} % for thermal spread): P(V) would jump "
+          "where the shell crosses it. Choose a cutoff between two shells over the whole range",
+          cutoff, n, lo, hi, 100.0 * margin));
+    }
+  }
+}
+
 std::vector<bool> default_held_out(size_t n) {
   std::vector<bool> out(n, false);
   for (size_t i = 1; i < n; i += 2) out[i] = true;
@@ -261,6 +279,7 @@ config::StageKindSpec fit_dpd_potential_spec() {
 FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& materials) {
   FitSettings f;
   f.material = stage["material"].as<std::string>();
+  f.atoms_per_particle = materials[f.material]["atoms_per_particle"].as<int>(8);
   f.start_potential = YAML::Clone(materials[f.material]["potential"]);
   for (const auto& kv : stage["free"]) {
     const auto b = kv.second.as<std::vector<double>>();

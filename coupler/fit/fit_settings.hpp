@@ -63,6 +63,7 @@ struct FitSettings {
   OptimizerSettings optimizer;
   JudgeSettings judge;
   int group_ranks = 1;
+  int atoms_per_particle = 8;
 
   // From the resolved stage (references to tables replaced by tables) and
   // the resolved materials. Throws pbms::Error for what only the run can
@@ -71,6 +72,13 @@ struct FitSettings {
 };
 
 config::StageKindSpec fit_dpd_potential_spec();
+
+// A sharp cutoff makes P(V) jump where a neighbour shell of the fcc crystal
+// crosses it. Throws pbms::Error naming the shell if `cutoff` lies within
+// `margin` (relative, for thermal spread) of a shell distance anywhere over
+// the target volumes per atom [v_min, v_max].
+void check_cutoff_between_shells(double cutoff, double v_min, double v_max, int atoms_per_particle,
+                                 double margin = 0.02);
 
 // Every second point of a ladder of n, starting with the second.
 std::vector<bool> default_held_out(size_t n);

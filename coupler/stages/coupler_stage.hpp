@@ -22,13 +22,14 @@ class CouplerStageContext {
  public:
   CouplerStageContext(Scheduler& scheduler, const config::StageConfig& stage, YAML::Node materials,
                       const std::vector<config::DriverDescription>& drivers,
-                      std::filesystem::path run_dir, uint64_t seed)
+                      std::filesystem::path run_dir, uint64_t seed, bool resume)
       : scheduler_(scheduler),
         stage_(stage),
         materials_(std::move(materials)),
         drivers_(drivers),
         run_dir_(std::move(run_dir)),
-        seed_(seed) {}
+        seed_(seed),
+        resume_(resume) {}
 
   [[nodiscard]] Scheduler& scheduler() { return scheduler_; }
   [[nodiscard]] const config::StageConfig& stage() const { return stage_; }
@@ -37,6 +38,9 @@ class CouplerStageContext {
   [[nodiscard]] const YAML::Node& materials() const { return materials_; }
   [[nodiscard]] uint64_t seed() const { return seed_; }
   [[nodiscard]] const std::filesystem::path& run_dir() const { return run_dir_; }
+  // The run was started again with --resume: pick up what an interrupted
+  // earlier run of this stage recorded.
+  [[nodiscard]] bool resume() const { return resume_; }
   // <run_dir>/<stage>/, created on first use.
   [[nodiscard]] std::filesystem::path stage_dir() const;
 
@@ -58,6 +62,7 @@ class CouplerStageContext {
   const std::vector<config::DriverDescription>& drivers_;
   std::filesystem::path run_dir_;
   uint64_t seed_;
+  bool resume_;
   StageResults results_;
 };
 

@@ -1,0 +1,100 @@
+// The fit's objective: relative residuals per target, held-out rows kept out
+// of the sum, weights, and the penalty a failed candidate gets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fit/fit_objective.hpp"
+#include "pbms/error.hpp"
+
+using namespace pbms::coupler::fit;
+
+namespace {
+
+IsothermTarget isotherm() {
+  IsothermTarget t;
+  t.pressure = {0.0, 1e4, 2e4, 4e4};
+  t.volume_per_atom = {12.0, 11.9, 11.8, 11.6};
+  t.held_out = default_held_out(4);
+  t.weight = 2.0;
+  return t;
+}
+
+}  // namespace
+
+TEST(FitObjective, DefaultHeldOutIsEverySecondRowFromTheSecond) {
+  EXPECT_EQ(default_held_out(5), (std::vector<bool>{false, true, false, true, false}));
+  EXPECT_EQ(default_held_out(1), (std::vector<bool>{false}));
+}
+
+TEST(FitObjective, ZeroExactlyAtTheTargets) {
+  const FitObjective f(isotherm(), ElasticTarget{1.7e6, 1.2e6, 7.6e5, 1.0});
+  Judgement j;
+  j.volume_per_atom = isotherm().volume_per_atom;
+  j.c11 = 1.7e6;
+  j.c12 = 1.2e6;
+  j.c44 = 7.6e5;
+  const Residuals r = f.residuals(j);
+  EXPECT_EQ(f.value(r), 0.0);
+  EXPECT_EQ(f.max_trained(r), 0.0);
+  EXPECT_EQ(f.max_held_out(r), 0.0);
+}
+
+// Rows 1 and 3 are held out: a residual there is reported but not summed.
+TEST(FitObjective, HeldOutRowsAreReportedButNotFitted) {
+  const FitObjective f(isotherm(), std::nullopt);
+  Judgement j;
+  j.volume_per_atom = {12.0 * 1.01, 11.9 * 1.05, 11.8 * 0.98, 11.6};
+  const Residuals r = f.residuals(j);
+  ASSERT_EQ(r.isotherm.size(), 4u);
+  EXPECT_NEAR(r.isotherm[0], 0.01, 1e-14);
+  EXPECT_NEAR(r.isotherm[2], -0.02, 1e-14);
+  // weight 2 x mean of 0.01^2 and 0.02^2 over the two trained rows.
+  EXPECT_NEAR(f.value(r), 2.0 * (1e-4 + 4e-4) / 2.0, 1e-16);
+  EXPECT_NEAR(f.max_trained(r), 0.02, 1e-14);
+  EXPECT_NEAR(f.max_held_out(r), 0.05, 1e-14);
+}
+
+TEST(FitObjective, ElasticConstantsAreWeightedMeanSquares) {
+  ElasticTarget e;
+  e.c11 = 1.0e6;
+  e.c44 = 5.0e5;
+  e.weight = 0.5;
+  const FitObjective f(std::nullopt, e);
+  Judgement j;
+  j.c11 = 1.1e6;
+  j.c12 = 3.0e6;  // not a target: ignored
+  j.c44 = 4.0e5;
+  const Residuals r = f.residuals(j);
+  EXPECT_FALSE(r.c12.has_value());
+  EXPECT_NEAR(f.value(r), 0.5 * (0.01 + 0.04) / 2.0, 1e-15);
+  EXPECT_NEAR(f.max_trained(r), 0.2, 1e-14);
+}
+
+TEST(FailurePenalty, TwiceTheWorstSeenAndAtLeastOne) {
+  FailurePenalty p;
+  EXPECT_EQ(p.value(), 1.0);
+  p.seen(0.3);
+  EXPECT_EQ(p.value(), 1.0);
+  p.seen(4.0);
+  p.seen(std::nan(""));
+  p.seen(2.0);
+  EXPECT_EQ(p.value(), 8.0);
+}
+
+// Copper mesoparticles (a = 7.23 Å at V0 = 11.81 Å^3 per atom): the fourth
+// shell lies at 10.22 Å, the fifth at 11.43 Å. Over 0-10 GPa (V down to
+// 10.9 Å^3) the fourth shell sweeps 9.96-10.22 Å: a 10 Å cutoff sits on it,
+// 10.7 Å stays between the shells.
+TEST(FitCutoff, RefusesACutoffThatAShellCrosses) {
+  const double v0 = 7.23 * 7.23 * 7.23 / 32.0, v10 = 10.9;
+  EXPECT_THROW(check_cutoff_between_shells(10.0, v10, v0, 8), pbms::Error);
+  EXPECT_NO_THROW(check_cutoff_between_shells(10.7, v10, v0, 8));
+  try {
+    check_cutoff_between_shells(10.0, v10, v0, 8);
+  } catch (const pbms::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("neighbour shell 4"), std::string::npos) << e.what();
+  }
+  // Within 2 % of the first shell at V0 only.
+  EXPECT_THROW(check_cutoff_between_shells(5.2, v0, v0, 8), pbms::Error);
+}
