@@ -73,6 +73,15 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
   Scheduler& scheduler = ctx_.scheduler();
   // Every state point goes out at once; the scheduler queues what the
   // groups cannot take yet.
+  // The elastic request is the longest: it goes first, so that the
+  // isotherm shares fill the other groups meanwhile.
+  std::optional<protocol::RequestId> elastic;
+  if (settings_.elastic) {
+    YAML::Node params = crystal_params(temperature);
+    params["zero_pressure"] = true;
+    elastic = scheduler.submit(kDriver, request("dpd_elastic", params, potential));
+  }
+
   // One request per rank group, each with a contiguous share of the
   // pressures: fewer round trips than a request per pressure, and every
   // pressure is sampled on its own crystal with the same seed, so the shares
@@ -90,13 +99,6 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
       isotherm.push_back(scheduler.submit(kDriver, request("dpd_isotherm", params, potential)));
     }
   }
-  std::optional<protocol::RequestId> elastic;
-  if (settings_.elastic) {
-    YAML::Node params = crystal_params(temperature);
-    params["zero_pressure"] = true;
-    elastic = scheduler.submit(kDriver, request("dpd_elastic", params, potential));
-  }
-
   std::map<protocol::RequestId, Answer> answers;
   const size_t expected = isotherm.size() + (elastic ? 1 : 0);
   while (answers.size() < expected) {

@@ -9,9 +9,19 @@
 #include <fmt/format.h>
 #include <nlopt.hpp>
 
+// GCC 12 warns inside its own AVX-512 intrinsics when Eigen vectorises with
+// them (GCC bug 105593, fixed in 13), as core/src/equation_of_state.cpp says.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <Eigen/Core>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
+#pragma GCC diagnostic pop
+
 #include "fit/dpd_judge.hpp"
 #include "fit/evaluation_journal.hpp"
 #include "fit/fit_objective.hpp"
+#include "fit/parameter_uncertainty.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/units.hpp"
@@ -21,6 +31,10 @@ namespace {
 
 constexpr const char* kDriver = "dpd_driver";
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Candidates around the best point that measure the parameters' errors: a
+// step of 1e-3 of each parameter's bounds.
+constexpr int kErrorPhase = 2;
+constexpr double kErrorStep = 1e-3;
 
 struct Evaluation {
   int phase = 0;  // 0: global search, 1: local polish
@@ -42,6 +56,10 @@ std::string parameter_unit(const std::string& style, const std::string& name) {
     }
   }
   return "1";
+}
+
+const char* phase_name(int phase) {
+  return phase == 0 ? "global" : phase == 1 ? "local" : "parameter errors";
 }
 
 nlopt::algorithm algorithm(const std::string& name) {
@@ -74,7 +92,11 @@ class Fit {
       x = best_x(t).value_or(x);
     }
     if (s_.optimizer.local != "none" && s_.optimizer.local_evaluations > 0) {
-      minimise(algorithm(s_.optimizer.local), 1, final_t, s_.optimizer.local_evaluations, x);
+      if (s_.optimizer.local == "levenberg_marquardt") {
+        least_squares(final_t, s_.optimizer.local_evaluations, x);
+      } else {
+        minimise(algorithm(s_.optimizer.local), 1, final_t, s_.optimizer.local_evaluations, x);
+      }
     }
     if (!best_x(final_t)) evaluate(x, 1, final_t);  // the answer is judged at T
     if (ctx_.resume()) {
@@ -82,7 +104,8 @@ class Fit {
                            journal_.replayed(), "evaluations.journal",
                            evaluations_.size() - journal_.replayed()));
     }
-    report(*best_index(final_t));
+    const size_t best = *best_index(final_t);
+    report(best, uncertainties(best));
   }
 
  private:
@@ -106,6 +129,7 @@ class Fit {
     int n = 0;
     if (s_.optimizer.global != "none") n += s_.optimizer.global_evaluations;
     if (s_.optimizer.local != "none") n += s_.optimizer.local_evaluations;
+    if (s_.judge.temperature > 0.0) n += static_cast<int>(s_.free.size());  // parameter errors
     return std::max(n, 1);
   }
 
@@ -152,9 +176,9 @@ class Fit {
     const std::string best_text =
         best ? fmt::format("best {:.4g}", evaluations_[*best].objective) : "no success yet";
     const std::string failed = e.judgement.ok ? "" : " (failed: " + e.judgement.reason + ")";
-    ctx_.progress(static_cast<int64_t>(evaluations_.size()), budget_,
-                  fmt::format("{} at {:g} K, {}{}", e.phase == 0 ? "global" : "local",
-                              e.temperature, best_text, failed));
+    ctx_.progress(
+        static_cast<int64_t>(evaluations_.size()), budget_,
+        fmt::format("{} at {:g} K, {}{}", phase_name(e.phase), e.temperature, best_text, failed));
     if (!e.judgement.ok) {
       ctx_.log(fmt::format("evaluation {} failed, penalty {:.4g}: {}", evaluations_.size(),
                            e.objective, e.judgement.reason));
@@ -192,11 +216,87 @@ class Fit {
     if (c.error) std::rethrow_exception(c.error);
   }
 
+  // The residuals whose sum of squares is the objective: each fitted
+  // residual times the square root of its target's weight over its count.
+  // A failed candidate spreads its penalty evenly over them.
+  std::vector<double> weighted_residuals(const Evaluation& e) const {
+    const size_t m = fitted_count();
+    if (!e.judgement.ok)
+      return std::vector<double>(m, std::sqrt(e.objective / static_cast<double>(m)));
+    std::vector<double> out;
+    size_t rows = 0, constants = 0;
+    for (size_t i = 0; s_.isotherm && i < s_.isotherm->held_out.size(); ++i)
+      rows += s_.isotherm->held_out[i] ? 0 : 1;
+    for (const auto& c : {e.residuals.c11, e.residuals.c12, e.residuals.c44})
+      constants += c ? 1 : 0;
+    for (size_t i = 0; i < e.residuals.isotherm.size(); ++i) {
+      if (s_.isotherm->held_out[i]) continue;
+      out.push_back(e.residuals.isotherm[i] *
+                    std::sqrt(s_.isotherm->weight / static_cast<double>(rows)));
+    }
+    for (const auto& c : {e.residuals.c11, e.residuals.c12, e.residuals.c44}) {
+      if (c) out.push_back(*c * std::sqrt(s_.elastic->weight / static_cast<double>(constants)));
+    }
+    return out;
+  }
+
+  size_t fitted_count() const {
+    size_t m = 0;
+    for (size_t i = 0; s_.isotherm && i < s_.isotherm->held_out.size(); ++i)
+      m += s_.isotherm->held_out[i] ? 0 : 1;
+    if (s_.elastic)
+      m += (s_.elastic->c11 ? 1 : 0) + (s_.elastic->c12 ? 1 : 0) + (s_.elastic->c44 ? 1 : 0);
+    return m;
+  }
+
+  // Levenberg-Marquardt on the weighted residuals, in the unit box of the
+  // bounds (a step outside is pulled back onto the box).
+  struct LeastSquares {
+    using Scalar = double;
+    using InputType = Eigen::VectorXd;
+    using ValueType = Eigen::VectorXd;
+    using JacobianType = Eigen::MatrixXd;
+    enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+    Fit* fit;
+    double temperature;
+    [[nodiscard]] int inputs() const { return static_cast<int>(fit->s_.free.size()); }
+    [[nodiscard]] int values() const { return static_cast<int>(fit->fitted_count()); }
+    int operator()(const Eigen::VectorXd& q, Eigen::VectorXd& r) const {
+      std::vector<double> x(q.data(), q.data() + q.size());
+      for (double& v : x) v = std::clamp(v, 0.0, 1.0);
+      fit->evaluate(x, 1, temperature);
+      const auto w = fit->weighted_residuals(fit->evaluations_.back());
+      for (size_t i = 0; i < w.size(); ++i) r[static_cast<Eigen::Index>(i)] = w[i];
+      return 0;
+    }
+  };
+
+  void least_squares(double temperature, int evaluations, const std::vector<double>& start) {
+    if (fitted_count() < s_.free.size()) {
+      throw Error("levenberg_marquardt needs at least as many fitted targets as free parameters");
+    }
+    LeastSquares f{this, temperature};
+    // Forward differences: 1e-6 of a parameter for the static crystal, above
+    // the round-off of a judged volume; 1e-3 for a sampled one, whose judged
+    // volumes are smooth in the parameters only down to a fraction of their
+    // sampling error (the isotherm solve stops there).
+    Eigen::NumericalDiff<LeastSquares> diff(f, temperature > 0.0 ? 1e-6 : 1e-12);
+    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LeastSquares>> lm(diff);
+    // Eigen counts the steps' evaluations only; each Jacobian adds one per
+    // parameter, so the budget is shared out that way.
+    lm.parameters.maxfev = std::max<int>(1, evaluations / static_cast<int>(s_.free.size() + 1));
+    lm.parameters.xtol = s_.optimizer.x_tolerance;
+    lm.parameters.ftol = s_.optimizer.f_tolerance;
+    Eigen::VectorXd q =
+        Eigen::Map<const Eigen::VectorXd>(start.data(), static_cast<Eigen::Index>(start.size()));
+    lm.minimize(q);
+  }
+
   std::optional<size_t> best_index(double temperature) const {
     std::optional<size_t> best;
     for (size_t i = 0; i < evaluations_.size(); ++i) {
       const auto& e = evaluations_[i];
-      if (!e.judgement.ok || e.temperature != temperature) continue;
+      if (!e.judgement.ok || e.temperature != temperature || e.phase == kErrorPhase) continue;
       if (!best || e.objective < evaluations_[*best].objective) best = i;
     }
     return best;
@@ -210,7 +310,68 @@ class Fit {
     return x;
   }
 
-  void report(size_t best) {
+  // The fitted residuals: trained isotherm rows, then the targeted Cij.
+  std::vector<double> fitted_residuals(const Residuals& r) const {
+    std::vector<double> out;
+    for (size_t i = 0; i < r.isotherm.size(); ++i) {
+      if (!s_.isotherm->held_out[i]) out.push_back(r.isotherm[i]);
+    }
+    for (const auto& c : {r.c11, r.c12, r.c44}) {
+      if (c) out.push_back(*c);
+    }
+    return out;
+  }
+
+  // Their sampling errors at the best point: a pressure error becomes a
+  // volume error through the target isotherm's slope dV/dP.
+  std::vector<double> residual_errors(const Judgement& j) const {
+    std::vector<double> out;
+    if (s_.isotherm) {
+      const auto& p = s_.isotherm->pressure;
+      const auto& v = s_.isotherm->volume_per_atom;
+      for (size_t i = 0; i < p.size(); ++i) {
+        if (s_.isotherm->held_out[i]) continue;
+        const size_t a = i == 0 ? 0 : i - 1, b = std::min(i + 1, p.size() - 1);
+        const double slope = p[b] != p[a] ? (v[b] - v[a]) / (p[b] - p[a]) : 0.0;
+        out.push_back(j.pressure_error[i] * std::abs(slope) / v[i]);
+      }
+    }
+    if (s_.elastic) {
+      const ElasticTarget& el = *s_.elastic;
+      const auto add = [&](const std::optional<double>& t, const std::optional<double>& e) {
+        if (t) out.push_back(e ? *e / *t : 0.0);
+      };
+      add(el.c11, j.c11_error);
+      add(el.c12, j.c12_error);
+      add(el.c44, j.c44_error);
+    }
+    return out;
+  }
+
+  // Standard errors of the fitted parameters from the judge's sampling
+  // errors, with J by forward differences (one candidate per parameter,
+  // journalled like any other). NaN for a static fit, which has no noise.
+  std::vector<double> uncertainties(size_t best) {
+    std::vector<double> none(s_.free.size(), kNaN);
+    if (!(s_.judge.temperature > 0.0)) return none;
+    const Evaluation centre = evaluations_[best];
+    const std::vector<double> r0 = fitted_residuals(centre.residuals);
+    std::vector<std::vector<double>> jacobian(r0.size(), std::vector<double>(s_.free.size()));
+    for (size_t k = 0; k < s_.free.size(); ++k) {
+      std::vector<double> x;
+      for (size_t m = 0; m < s_.free.size(); ++m) x.push_back(to_unit(m, centre.params[m]));
+      x[k] += x[k] + kErrorStep <= 1.0 ? kErrorStep : -kErrorStep;
+      evaluate(x, kErrorPhase, centre.temperature);
+      const Evaluation& e = evaluations_.back();
+      if (!e.judgement.ok) return none;
+      const std::vector<double> r = fitted_residuals(e.residuals);
+      const double dp = e.params[k] - centre.params[k];
+      for (size_t i = 0; i < r0.size(); ++i) jacobian[i][k] = (r[i] - r0[i]) / dp;
+    }
+    return parameter_errors(jacobian, residual_errors(centre.judgement));
+  }
+
+  void report(size_t best, const std::vector<double>& errors) {
     const Evaluation& e = evaluations_[best];
     auto& r = ctx_.results();
     const std::string style = s_.start_potential["style"].as<std::string>();
@@ -224,7 +385,7 @@ class Fit {
     for (const auto& x : evaluations_) failed += x.judgement.ok ? 0 : 1;
     r.add_scalar("failed_evaluations", failed, "1");
     for (size_t k = 0; k < s_.free.size(); ++k) {
-      r.add_scalar(s_.free[k].name, e.params[k], parameter_unit(style, s_.free[k].name));
+      r.add_scalar(s_.free[k].name, e.params[k], parameter_unit(style, s_.free[k].name), errors[k]);
     }
     write_potential(potential_of(e.params));
     log_table();

@@ -66,8 +66,11 @@ Param optimizer_param() {
                      "NLopt global search over the bounds (CRS2 with local mutation, or "
                      "locally biased DIRECT)")
            .def("crs2_lm"),
-       Param::choice("local", {"bobyqa", "sbplx", "none"},
-                     "NLopt local polish from the best point of the global search")
+       Param::choice("local", {"bobyqa", "sbplx", "levenberg_marquardt", "none"},
+                     "Local polish from the best point of the global search: NLopt's BOBYQA or "
+                     "Sbplx, or Levenberg-Marquardt (Eigen) on the residuals, which uses the "
+                     "objective's least-squares form and crosses narrow valleys in a few "
+                     "Jacobians")
            .def("bobyqa"),
        Param::integer("global_evaluations", "Evaluation budget of the global search")
            .def(60)
@@ -99,7 +102,9 @@ Param judge_param() {
        Param::integer("equilibration_steps", "DPD steps before sampling, per state")
            .def(200)
            .at_least(0),
-       Param::integer("sampling_steps", "DPD steps sampled, per state").def(1000).at_least(10),
+       Param::integer("sampling_steps", "DPD steps sampled, per state (as dpd_isotherm)")
+           .def(2000)
+           .at_least(10),
        Param::real("gamma", Dimension::kNone, "Sampling friction, g/mol/ps").def(1.0e4).above(0),
        Param::real("time_step", Dimension::kTime, "DPD time step").def(0.01).above(0)},
       "How dpd_driver judges a candidate (dpd_isotherm and dpd_elastic requests)"));

@@ -36,7 +36,7 @@ struct ElasticTarget {
 
 struct OptimizerSettings {
   std::string global = "crs2_lm";  // crs2_lm | direct_l | none
-  std::string local = "bobyqa";    // bobyqa | sbplx | none
+  std::string local = "bobyqa";    // bobyqa | sbplx | levenberg_marquardt | none
   int global_evaluations = 60;
   int local_evaluations = 60;
   double x_tolerance = 1e-4;  // relative, in the unit box of the bounds
@@ -49,7 +49,7 @@ struct JudgeSettings {
   double temperature = 298.0;
   int cells = 0;
   int equilibration_steps = 200;
-  int sampling_steps = 1000;
+  int sampling_steps = 2000;
   double gamma = 1.0e4;
   double time_step = 0.01;
 };

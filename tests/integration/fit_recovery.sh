@@ -12,7 +12,7 @@ cfg="$ROOT/tests/integration/configs"
 grep -q "\[fit\] evaluation .* evaluations/s | ETA .* best" runs/fit_recovery_morse/log.txt ||
   fail "no progress lines (evaluation n of N, best objective, ETA) in the log"
 # A small budget, judged on one group and on two.
-sed -e 's/global_evaluations: 150/global_evaluations: 30/' -e 's/local_evaluations: 1000/local_evaluations: 30/' \
+sed -e 's/global_evaluations: 150/global_evaluations: 30/' -e 's/local_evaluations: 200/local_evaluations: 30/' \
     -e "s#\.\./\.\./\.\./configs#$ROOT/configs#" -e 's/name: fit_recovery_morse/name: PLACEHOLDER/' \
     "$cfg/fit_recovery_morse.yaml" > small.yaml
 sed 's/PLACEHOLDER/small_1/' small.yaml > small_1.yaml

@@ -5,7 +5,7 @@ source "$(dirname "$0")/lib.sh"
 cfg="$ROOT/tests/integration/configs/fit_recovery_morse.yaml"
 make_config() {  # make_config NAME
   sed -e "s/name: fit_recovery_morse/name: $1/" -e 's/global_evaluations: 150/global_evaluations: 120/' \
-      -e 's/local_evaluations: 1000/local_evaluations: 300/' "$cfg" > "$1.yaml"
+      "$cfg" > "$1.yaml"
 }
 make_config full
 make_config cut

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "fit/fit_objective.hpp"
+#include "fit/parameter_uncertainty.hpp"
 #include "pbms/error.hpp"
 
 using namespace pbms::coupler::fit;
@@ -97,4 +98,20 @@ TEST(FitCutoff, RefusesACutoffThatAShellCrosses) {
   }
   // Within 2 % of the first shell at V0 only.
   EXPECT_THROW(check_cutoff_between_shells(5.2, v0, v0, 8), pbms::Error);
+}
+
+// A straight line y = a + b x fitted to points with error sigma: the
+// textbook standard errors of a and b.
+TEST(FitUncertainty, StraightLineGivesTheTextbookErrors) {
+  const std::vector<double> x{0.0, 1.0, 2.0, 3.0, 4.0};
+  const double sigma = 0.1;
+  std::vector<std::vector<double>> j;
+  for (const double xi : x) j.push_back({1.0, xi});
+  const auto e = parameter_errors(j, std::vector<double>(x.size(), sigma));
+  // S = n / s^2, Sx = sum x / s^2, Sxx = sum x^2 / s^2, D = S Sxx - Sx^2.
+  const double s = 5 / 0.01, sx = 10 / 0.01, sxx = 30 / 0.01, d = s * sxx - sx * sx;
+  EXPECT_NEAR(e[0], std::sqrt(sxx / d), 1e-12);
+  EXPECT_NEAR(e[1], std::sqrt(s / d), 1e-12);
+  // No sampling error (a static judge): no estimate.
+  EXPECT_TRUE(std::isnan(parameter_errors(j, std::vector<double>(x.size(), 0.0))[0]));
 }
