@@ -32,9 +32,9 @@ namespace {
 constexpr const char* kDriver = "dpd_driver";
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Candidates around the best point that measure the parameters' errors: a
-// step of 1e-3 of each parameter's bounds.
+// step of 1 % of each parameter's bounds either side.
 constexpr int kErrorPhase = 2;
-constexpr double kErrorStep = 1e-3;
+constexpr double kErrorStep = 1e-2;
 
 struct Evaluation {
   int phase = 0;  // 0: global search, 1: local polish
@@ -129,7 +129,7 @@ class Fit {
     int n = 0;
     if (s_.optimizer.global != "none") n += s_.optimizer.global_evaluations;
     if (s_.optimizer.local != "none") n += s_.optimizer.local_evaluations;
-    if (s_.judge.temperature > 0.0) n += static_cast<int>(s_.free.size());  // parameter errors
+    if (s_.judge.temperature > 0.0) n += 2 * static_cast<int>(s_.free.size());  // errors
     return std::max(n, 1);
   }
 
@@ -349,24 +349,35 @@ class Fit {
   }
 
   // Standard errors of the fitted parameters from the judge's sampling
-  // errors, with J by forward differences (one candidate per parameter,
-  // journalled like any other). NaN for a static fit, which has no noise.
+  // errors, with J by central differences of 1 % of each parameter's bounds
+  // (two candidates per parameter, journalled like any other). A sampled
+  // judge's volumes decorrelate under any change of the parameters, so the
+  // step must be large enough for the change to stand above that noise.
+  // NaN for a static fit, which has no noise.
   std::vector<double> uncertainties(size_t best) {
     std::vector<double> none(s_.free.size(), kNaN);
     if (!(s_.judge.temperature > 0.0)) return none;
     const Evaluation centre = evaluations_[best];
-    const std::vector<double> r0 = fitted_residuals(centre.residuals);
-    std::vector<std::vector<double>> jacobian(r0.size(), std::vector<double>(s_.free.size()));
+    const size_t m = fitted_residuals(centre.residuals).size();
+    std::vector<std::vector<double>> jacobian(m, std::vector<double>(s_.free.size()));
     for (size_t k = 0; k < s_.free.size(); ++k) {
       std::vector<double> x;
-      for (size_t m = 0; m < s_.free.size(); ++m) x.push_back(to_unit(m, centre.params[m]));
-      x[k] += x[k] + kErrorStep <= 1.0 ? kErrorStep : -kErrorStep;
-      evaluate(x, kErrorPhase, centre.temperature);
-      const Evaluation& e = evaluations_.back();
-      if (!e.judgement.ok) return none;
-      const std::vector<double> r = fitted_residuals(e.residuals);
-      const double dp = e.params[k] - centre.params[k];
-      for (size_t i = 0; i < r0.size(); ++i) jacobian[i][k] = (r[i] - r0[i]) / dp;
+      for (size_t j = 0; j < s_.free.size(); ++j) x.push_back(to_unit(j, centre.params[j]));
+      // Both sides inside the box: the step shrinks near a bound.
+      const double h = std::min({kErrorStep, x[k], 1.0 - x[k]});
+      if (!(h > 0.0)) return none;
+      std::vector<double> side[2];
+      double p[2];
+      for (int s = 0; s < 2; ++s) {
+        std::vector<double> xs = x;
+        xs[k] += s == 0 ? -h : h;
+        evaluate(xs, kErrorPhase, centre.temperature);
+        const Evaluation& e = evaluations_.back();
+        if (!e.judgement.ok) return none;
+        side[s] = fitted_residuals(e.residuals);
+        p[s] = e.params[k];
+      }
+      for (size_t i = 0; i < m; ++i) jacobian[i][k] = (side[1][i] - side[0][i]) / (p[1] - p[0]);
     }
     return parameter_errors(jacobian, residual_errors(centre.judgement));
   }
