@@ -217,37 +217,37 @@ class Fit {
   }
 
   // The residuals whose sum of squares is the objective: each fitted
-  // residual times the square root of its target's weight over its count.
-  // A failed candidate spreads its penalty evenly over them.
+  // residual times the square root of its weight in the objective. A failed
+  // candidate spreads its penalty evenly over them.
   std::vector<double> weighted_residuals(const Evaluation& e) const {
-    const size_t m = fitted_count();
-    if (!e.judgement.ok)
-      return std::vector<double>(m, std::sqrt(e.objective / static_cast<double>(m)));
-    std::vector<double> out;
-    size_t rows = 0, constants = 0;
-    for (size_t i = 0; s_.isotherm && i < s_.isotherm->held_out.size(); ++i)
-      rows += s_.isotherm->held_out[i] ? 0 : 1;
-    for (const auto& c : {e.residuals.c11, e.residuals.c12, e.residuals.c44})
-      constants += c ? 1 : 0;
-    for (size_t i = 0; i < e.residuals.isotherm.size(); ++i) {
-      if (s_.isotherm->held_out[i]) continue;
-      out.push_back(e.residuals.isotherm[i] *
-                    std::sqrt(s_.isotherm->weight / static_cast<double>(rows)));
+    const std::vector<double> w = fitted_weights();
+    if (!e.judgement.ok) {
+      return std::vector<double>(w.size(), std::sqrt(e.objective / static_cast<double>(w.size())));
     }
-    for (const auto& c : {e.residuals.c11, e.residuals.c12, e.residuals.c44}) {
-      if (c) out.push_back(*c * std::sqrt(s_.elastic->weight / static_cast<double>(constants)));
-    }
-    return out;
+    std::vector<double> r = fitted_residuals(e.residuals);
+    for (size_t i = 0; i < r.size(); ++i) r[i] *= std::sqrt(w[i]);
+    return r;
   }
 
-  size_t fitted_count() const {
-    size_t m = 0;
-    for (size_t i = 0; s_.isotherm && i < s_.isotherm->held_out.size(); ++i)
-      m += s_.isotherm->held_out[i] ? 0 : 1;
-    if (s_.elastic)
-      m += (s_.elastic->c11 ? 1 : 0) + (s_.elastic->c12 ? 1 : 0) + (s_.elastic->c44 ? 1 : 0);
-    return m;
+  // A target's weight shared over its fitted entries, in fitted_residuals'
+  // order (FitObjective::value is the weighted mean square per target).
+  std::vector<double> fitted_weights() const {
+    size_t rows = 0, constants = 0;
+    for (size_t i = 0; s_.isotherm && i < s_.isotherm->held_out.size(); ++i) {
+      rows += s_.isotherm->held_out[i] ? 0 : 1;
+    }
+    if (s_.elastic) {
+      for (const auto& c : {s_.elastic->c11, s_.elastic->c12, s_.elastic->c44})
+        constants += c ? 1 : 0;
+    }
+    std::vector<double> w;
+    for (size_t i = 0; i < rows; ++i) w.push_back(s_.isotherm->weight / static_cast<double>(rows));
+    for (size_t i = 0; i < constants; ++i)
+      w.push_back(s_.elastic->weight / static_cast<double>(constants));
+    return w;
   }
+
+  size_t fitted_count() const { return fitted_weights().size(); }
 
   // Levenberg-Marquardt on the weighted residuals, in the unit box of the
   // bounds (a step outside is pulled back onto the box).
