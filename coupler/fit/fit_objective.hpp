@@ -30,7 +30,7 @@ struct Residuals {
 class FitObjective {
  public:
   FitObjective(std::optional<IsothermTarget> isotherm, std::optional<ElasticTarget> elastic)
-      : isotherm_(std::move(isotherm)), elastic_(std::move(elastic)) {}
+      : isotherm_(std::move(isotherm)), elastic_(elastic) {}
 
   [[nodiscard]] Residuals residuals(const Judgement& j) const;
   // w_iso * mean over trained rows of r^2 + w_el * mean over the targeted

@@ -20,12 +20,13 @@ namespace pbms::coupler {
 
 class CouplerStageContext {
  public:
-  CouplerStageContext(Scheduler& scheduler, const config::StageConfig& stage, YAML::Node materials,
+  CouplerStageContext(Scheduler& scheduler, const config::StageConfig& stage,
+                      const YAML::Node& materials,
                       const std::vector<config::DriverDescription>& drivers,
                       std::filesystem::path run_dir, uint64_t seed, bool resume)
       : scheduler_(scheduler),
         stage_(stage),
-        materials_(std::move(materials)),
+        materials_(materials),
         drivers_(drivers),
         run_dir_(std::move(run_dir)),
         seed_(seed),
