@@ -199,6 +199,35 @@ class Daemon {
     if (file_log_) file_log_->info(s);
   }
 
+  // One stage's progress: a line refreshed on the console, about every
+  // 10 % in log.txt, and the manifest's `current` block.
+  class StageProgress {
+   public:
+    StageProgress(Daemon& d, std::string stage, const std::string& item)
+        : d_(d),
+          stage_(std::move(stage)),
+          console_(stage_, d.opt_.terminal, item),
+          file_(stage_, false, item) {}
+    void show(int64_t step, int64_t total, double sim_time_ps, const std::string& phase) {
+      d_.record_->progress(stage_, step, total, std::max(sim_time_ps, 0.0));
+      if (auto line = console_.update(step, total, sim_time_ps, phase, elapsed())) {
+        d_.console_.progress(*line);
+      }
+      if (auto line = file_.update(step, total, sim_time_ps, phase, elapsed())) {
+        if (d_.file_log_) d_.file_log_->info(*line);
+      }
+    }
+    [[nodiscard]] double elapsed() const {
+      return std::chrono::duration<double>(Clock::now() - t0_).count();
+    }
+
+   private:
+    Daemon& d_;
+    std::string stage_;
+    ProgressMeter console_, file_;
+    Clock::time_point t0_ = Clock::now();
+  };
+
   void run_stage(size_t index) {
     const auto& stage = wf_.stages[index];
     if (stage.program == config::kCouplerProgram) {
@@ -228,19 +257,10 @@ class Daemon {
     }
     const auto request = scheduler_.submit(stage.program, rs);
 
-    ProgressMeter meter(stage.name, opt_.terminal);
-    ProgressMeter file_meter(stage.name, false);
-    const auto t0 = Clock::now();
-    auto now = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+    StageProgress progress(*this, stage.name, "step");
     const Answer answer = scheduler_.wait_for(request, [&](const Answer& a) {
-      const auto* p = std::get_if<protocol::Progress>(&a);
-      if (!p) return;
-      record_->progress(p->stage, p->step, p->total_steps, p->sim_time_ps);
-      if (auto line = meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
-        console_.progress(*line);
-      }
-      if (auto line = file_meter.update(p->step, p->total_steps, p->sim_time_ps, p->phase, now())) {
-        if (file_log_) file_log_->info(*line);
+      if (const auto* p = std::get_if<protocol::Progress>(&a)) {
+        progress.show(p->step, p->total_steps, p->sim_time_ps, p->phase);
       }
     });
     // A workflow stage without its result leaves later stages without their
@@ -266,23 +286,16 @@ class Daemon {
                     stage.name, stage.kind, fmt::join(stage.drivers, ", ")));
     CouplerStageContext ctx(scheduler_, resolved, resolve_materials(wf_.materials, done_), drivers_,
                             record_->dir(), wf_.seed, opt_.resume);
-    ProgressMeter meter(stage.name, opt_.terminal, "evaluation");
-    ProgressMeter file_meter(stage.name, false, "evaluation");
-    const auto t0 = Clock::now();
-    auto now = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+    StageProgress progress(*this, stage.name, "evaluation");
     ctx.log = [&](const std::string& line) { log(fmt::format("  {}: {}", stage.name, line)); };
     ctx.progress = [&](int64_t n, int64_t total, const std::string& phase) {
-      record_->progress(stage.name, n, total, 0.0);
-      if (auto line = meter.update(n, total, -1.0, phase, now())) console_.progress(*line);
-      if (auto line = file_meter.update(n, total, -1.0, phase, now())) {
-        if (file_log_) file_log_->info(*line);
-      }
+      progress.show(n, total, -1.0, phase);  // no simulated time
     };
     create_coupler_stage(stage.kind)->run(ctx);
     console_.end_progress();
     protocol::StageDone done;
     done.stage = stage.name;
-    done.wall_s = now();
+    done.wall_s = progress.elapsed();
     done.results = std::move(ctx.results());
     log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
     finish_stage(stage, std::move(done));
