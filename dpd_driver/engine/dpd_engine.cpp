@@ -91,7 +91,7 @@ void DpdEngine::rebuild() {
   }
 }
 
-void DpdEngine::refresh_ghosts() {
+void DpdEngine::update_neighbours() {
   double moved = list_.max_displacement_squared(particles_);
   if (domain_.size() > 1) {
     mpi::check(MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_DOUBLE, MPI_MAX, comm()),
@@ -145,19 +145,24 @@ PairResult DpdEngine::compute_forces(Tally tally) {
 }
 
 void DpdEngine::step() {
-  const double dt = settings_.dt;
   if (sweep_order_) sweep_pairs();
   half_kick();
-  for (std::size_t i = 0; i < owned_; ++i) {
-    for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];
-  }
-  ++step_;
-  refresh_ghosts();
+  drift();
+  update_neighbours();
   compute_forces(Tally::kForcesOnly);
   half_kick();
 }
 
+void DpdEngine::drift() {
+  const double dt = settings_.dt;
+  for (std::size_t i = 0; i < owned_; ++i) {
+    for (int a = 0; a < 3; ++a) particles_.x[i][a] += dt * particles_.v[i][a];
+  }
+  ++step_;
+}
+
 void DpdEngine::sweep_pairs() {
+  if (!sweep_order_) return;
   const bool dpde = settings_.scheme == DpdScheme::kShardlowDpde;
   const bool decomposed = domain_.size() > 1;
   if (decomposed) {

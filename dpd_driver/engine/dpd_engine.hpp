@@ -66,8 +66,22 @@ class DpdEngine {
   // the groups to the prescribed ones. Throws as set_prescribed_groups.
   void set_rigid_bodies(const std::vector<std::uint32_t>& masks);
 
-  // One step of the scheme.
+  // One step of the scheme: for velocity Verlet, half_kick, drift,
+  // update_neighbours, compute_forces, half_kick (a Shardlow scheme sweeps
+  // the pairs first). A coupling scheme that moves the particles through
+  // a grid calls the phases it needs itself.
   void step();
+
+  // The phases of step(). Each is collective over the engine's ranks.
+  void sweep_pairs();  // Shardlow schemes: the pair updates of the dissipative part
+  void half_kick();    // v += dt/2 f/m for free particles; rigid bodies by their net force
+  void drift();        // x += dt v for owned particles; the step count moves on
+  // Ghosts follow their owners, or when a particle moved more than half
+  // the skin: wrap, migrate, new ghosts and neighbour list.
+  void update_neighbours();
+  // Pair forces at the current positions (with the dissipative and random
+  // parts for velocity Verlet, from the current velocities).
+  PairResult compute_forces(Tally tally = Tally::kForcesOnly);
   // Scales the free particles' velocities towards T over tau (Berendsen).
   void berendsen(double temperature, double tau);
 
@@ -87,11 +101,7 @@ class DpdEngine {
   [[nodiscard]] MPI_Comm comm() const { return domain_.comm(); }
 
  private:
-  void refresh_ghosts();
   void rebuild();
-  PairResult compute_forces(Tally tally);
-  void half_kick();
-  void sweep_pairs();
 
   DomainDecomposition domain_;
   std::unique_ptr<PairStyle> pair_;

@@ -105,7 +105,9 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape
       local_(patch_grid(patch_)),
       shape_(std::move(shape)),
       materials_(std::move(materials)),
-      opt_(options) {
+      opt_(options),
+      linear_(dynamic_cast<const grid::ShapeFunctionLinear*>(shape_.get()) != nullptr),
+      block_(std::make_unique<MaterialBlock>()) {
   const auto n = static_cast<size_t>(local_.node_count());
   sums_.assign(n, NodeLanes{});
   kin_.assign(n, NodeLanes{});
@@ -722,21 +724,6 @@ void MpmSolver::hold_prescribed(const MaterialPoints& points, const BoundaryCond
   }
 }
 
-void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
-  const size_t n = points.size();
-  double ref = opt_.reference_point_mass;
-  if (ref <= 0.0 && n > 0) ref = *std::min_element(points.mass.begin(), points.mass.end());
-  mass_floor_ = ref * opt_.small_mass_fraction;
-  if (opt_.ddmp) build_dual(points);
-  // The linear style runs an inlined fixed stencil; any other style goes
-  // through its virtual evaluate(), with the same passes.
-  if (dynamic_cast<const grid::ShapeFunctionLinear*>(shape_.get()) != nullptr) {
-    step_passes(LinearEval{grid::ShapeFunctionLinear::Kernel(local_)}, points, bc, dt);
-  } else {
-    step_passes(GenericEval{*shape_, local_, {}}, points, bc, dt);
-  }
-}
-
 void MpmSolver::build_dual(const MaterialPoints& points) {
   // Built from this rank's points over its own cells, as integrals, so that
   // the parts of V_j and of the rows at shared nodes add up across ranks.
@@ -748,52 +735,97 @@ void MpmSolver::build_dual(const MaterialPoints& points) {
   if (patch_.sum_shared) patch_.sum_shared(dual_volume_.data(), 1, 1);
 }
 
-template <class Eval>
-void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
-                            double dt) {
-  const size_t n = points.size();
-  const double kf = opt_.units.force_per_mass_to_accel;
-  const bool last = opt_.stress_update == StressUpdate::kLast;
-  const bool prescribed = !bc.point_velocities.empty();
-  Mat3 L;
-  constexpr size_t kBlock = MaterialBlock::kSize;
-  const auto block = std::make_unique<MaterialBlock>();
-
-  if (last) {
-    scatter(eval, points, bc, true);  // s-1 to s-4
-    sum_shared(sums::kMass, 7);
-    if (opt_.ddmp) add_dual_force();
-    sum_rigid();
+template <class F>
+void MpmSolver::with_eval(F&& pass) {
+  // The linear style runs an inlined fixed stencil; any other style goes
+  // through its virtual evaluate(), with the same passes.
+  if (linear_) {
+    pass(LinearEval{grid::ShapeFunctionLinear::Kernel(local_)});
   } else {
-    // Update-stress-first: the gradient of the mapped velocity updates the
-    // stress before it makes the internal force.
-    scatter(eval, points, bc, false);
-    sum_shared(sums::kMass, 4);
-    sum_rigid();
-    nodal_velocities(bc, velocity_);
-    impose_rigid(bc, velocity_);
-    if (opt_.ddmp) nodal_gradient(velocity_, G_);
-    pack_kinematics(velocity_, velocity_);
+    pass(GenericEval{*shape_, local_, {}});
+  }
+}
+
+void MpmSolver::enter(Phase next) {
+  if (phase_ != next) {
+    throw Error(fmt::format("MPM solver: step phase {} called when phase {} was due",
+                            static_cast<int>(next), static_cast<int>(phase_)));
+  }
+  constexpr int kPhases = static_cast<int>(Phase::kUpdateStress) + 1;
+  phase_ = static_cast<Phase>((static_cast<int>(next) + 1) % kPhases);
+}
+
+void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
+  begin_step(points);
+  map_to_grid(points, bc, dt);
+  complete_nodal_sums();
+  update_nodes(bc, dt);
+  map_to_points(points, bc, dt);
+  complete_remap_sums();
+  update_stress_and_move(points, bc, dt);
+}
+
+void MpmSolver::begin_step(const MaterialPoints& points) {
+  enter(Phase::kBegin);
+  double ref = opt_.reference_point_mass;
+  if (ref <= 0.0 && points.size() > 0)
+    ref = *std::min_element(points.mass.begin(), points.mass.end());
+  mass_floor_ = ref * opt_.small_mass_fraction;
+  if (opt_.ddmp) build_dual(points);
+}
+
+void MpmSolver::map_to_grid(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
+  enter(Phase::kMapToGrid);
+  if (opt_.stress_update == StressUpdate::kLast) {
+    with_eval([&](const auto& eval) { scatter(eval, points, bc, true); });  // s-1 to s-4
+    return;
+  }
+  // Update-stress-first: the gradient of the mapped velocity updates the
+  // stress before it makes the internal force. That gradient needs the
+  // complete nodal velocities, so this phase sums over the solver's ranks
+  // once itself (a coupled run must use update-stress-last).
+  with_eval([&](const auto& eval) { scatter(eval, points, bc, false); });
+  sum_shared(sums::kMass, 4);
+  sum_rigid();
+  nodal_velocities(bc, velocity_);
+  impose_rigid(bc, velocity_);
+  if (opt_.ddmp) nodal_gradient(velocity_, G_);
+  pack_kinematics(velocity_, velocity_);
+  with_eval([&](const auto& eval) {
+    const size_t n = points.size();
+    Mat3 L;
     Vec3 unused;
-    for (size_t p0 = 0; p0 < n; p0 += kBlock) {
-      const size_t m = std::min(kBlock, n - p0);
+    for (size_t p0 = 0; p0 < n; p0 += MaterialBlock::kSize) {
+      const size_t m = std::min(MaterialBlock::kSize, n - p0);
       for (size_t i = 0; i < m; ++i) {
         decltype(auto) s = locate(eval, points, p0 + i);
         grid::keep_weights_in_memory(s);
         point_kinematics(points, p0 + i, s, L, unused);
-        block->set_velocity_gradient(i, L);
+        block_->set_velocity_gradient(i, L);
       }
-      update_stress_block(points, p0, m, *block, dt);
+      update_stress_block(points, p0, m, *block_, dt);
     }
     scatter(eval, points, bc, true);
-    sum_shared(sums::kMass, 7);
-    if (opt_.ddmp) add_dual_force();
-    sum_rigid();
-  }
+  });
+}
 
-  // Nodal momentum update (s-5, s-6). Constrained components are imposed on
-  // the new velocity, and the acceleration is taken from the constrained
-  // change, so that FLIP and PIC both honour the constraint.
+void MpmSolver::complete_nodal_sums() {
+  enter(Phase::kCompleteNodalSums);
+  sum_shared(sums::kMass, 7);
+  if (opt_.ddmp) add_dual_force();
+  sum_rigid();
+}
+
+MpmSolver::NodalSums MpmSolver::nodal_sums() {
+  return {reinterpret_cast<double*>(sums_.data()), sums::kStride, patch_.nodes};
+}
+
+// Nodal momentum update (s-5, s-6). Constrained components are imposed on
+// the new velocity, and the acceleration is taken from the constrained
+// change, so that FLIP and PIC both honour the constraint.
+void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
+  enter(Phase::kUpdateNodes);
+  const double kf = opt_.units.force_per_mass_to_accel;
   for (size_t i = 0; i < sums_.size(); ++i) {
     const Lanes8& r = sums_[i].lanes;
     const double mass = r[sums::kMass];
@@ -809,6 +841,20 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     }
   }
   apply_node_constraints(bc, velocity_, true);
+  hold_rigid_nodes(bc, dt);
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    if (sums_[i].lanes[sums::kMass] > mass_floor_) {
+      for (size_t a = 0; a < 3; ++a)
+        acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
+    }
+  }
+}
+
+// Nodes of a prescribed-velocity group move at its velocity; the force
+// that holds each there, counted once per node over all ranks, is the
+// group's reaction.
+void MpmSolver::hold_rigid_nodes(const BoundaryConditions& bc, double dt) {
+  const double kf = opt_.units.force_per_mass_to_accel;
   reaction_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
   for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
     const auto& pv = bc.point_velocities[c];
@@ -817,8 +863,6 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
       const double mass = sums_[i].lanes[sums::kMass];
       for (size_t a = 0; a < 3; ++a) {
         if (!pv.axis[a]) continue;
-        // The force that holds the node at the group's velocity, counted
-        // once per node over all ranks.
         if (unique_node_[i] && mass > mass_floor_) {
           reaction_[c][a] += mass * (pv.velocity[a] - velocity_[i][a]) / (dt * kf);
         }
@@ -826,18 +870,24 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
       }
     }
   }
-  for (size_t i = 0; i < sums_.size(); ++i) {
-    if (sums_[i].lanes[sums::kMass] > mass_floor_) {
-      for (size_t a = 0; a < 3; ++a)
-        acceleration_[i][a] = (velocity_[i][a] - acceleration_[i][a]) / dt;
-    }
-  }
+}
 
-  // Grid to points (s-7), and under update-stress-last the remap of the new
-  // point momenta with this step's shape functions (s-10) in the same pass.
+// Grid to points (s-7), and under update-stress-last the remap of the new
+// point momenta with this step's shape functions (s-10) in the same pass.
+void MpmSolver::map_to_points(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
+  enter(Phase::kMapToPoints);
   pack_kinematics(acceleration_, velocity_);
   const Lanes8 keep_all_but_momentum = {1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
   for (auto& r : sums_) r.lanes *= keep_all_but_momentum;
+  with_eval([&](const auto& eval) { grid_to_points(eval, points, bc, dt); });
+}
+
+template <class Eval>
+void MpmSolver::grid_to_points(const Eval& eval, MaterialPoints& points,
+                               const BoundaryConditions& bc, double dt) {
+  const size_t n = points.size();
+  const bool last = opt_.stress_update == StressUpdate::kLast;
+  const bool prescribed = !bc.point_velocities.empty();
   const double flip = opt_.flip;
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
@@ -869,17 +919,37 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
       move_point(points, p, vel, dt);  // s-8
     }
   }
+}
 
-  if (!last) return;
-  sum_shared(sums::kMomentum, 3);
+void MpmSolver::complete_remap_sums() {
+  enter(Phase::kCompleteRemapSums);
+  if (opt_.stress_update == StressUpdate::kLast) sum_shared(sums::kMomentum, 3);
+}
+
+// Stress update (s-11 to s-14) at the positions the step started from,
+// then the move with the momentum-update velocity (s-8), a block of points
+// at a time: the kinematics point by point from the grid, then the stress
+// update across the block's points, then the move. Under
+// update-stress-first the points have moved already.
+void MpmSolver::update_stress_and_move(MaterialPoints& points, const BoundaryConditions& bc,
+                                       double dt) {
+  enter(Phase::kUpdateStress);
+  if (opt_.stress_update != StressUpdate::kLast) return;
   nodal_velocities(bc, remap_velocity_);  // s-11
   impose_rigid(bc, remap_velocity_);
   if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
   pack_kinematics(remap_velocity_, velocity_);
-  // Stress update (s-12 to s-14) at the positions the step started from,
-  // then the move with the momentum-update velocity (s-8), a block of
-  // points at a time: the kinematics point by point from the grid, then the
-  // stress update across the block's points, then the move.
+  with_eval([&](const auto& eval) { stress_and_move(eval, points, bc, dt); });
+}
+
+template <class Eval>
+void MpmSolver::stress_and_move(const Eval& eval, MaterialPoints& points,
+                                const BoundaryConditions& bc, double dt) {
+  const size_t n = points.size();
+  const bool prescribed = !bc.point_velocities.empty();
+  constexpr size_t kBlock = MaterialBlock::kSize;
+  MaterialBlock& block = *block_;
+  Mat3 L;
   std::array<Vec3, kBlock> vb;
   for (size_t p0 = 0; p0 < n; p0 += kBlock) {
     const size_t m = std::min(kBlock, n - p0);
@@ -887,16 +957,16 @@ void MpmSolver::step_passes(const Eval& eval, MaterialPoints& points, const Boun
     if constexpr (std::is_same_v<Eval, LinearEval>) {
       if (!opt_.ddmp) {
         for (; i + 8 <= m; i += 8)
-          point_kinematics_lanes(eval.kernel, points, p0 + i, *block, i, &vb[i]);
+          point_kinematics_lanes(eval.kernel, points, p0 + i, block, i, &vb[i]);
       }
     }
     for (; i < m; ++i) {
       decltype(auto) s = locate(eval, points, p0 + i);
       grid::keep_weights_in_memory(s);
       point_kinematics(points, p0 + i, s, L, vb[i]);
-      block->set_velocity_gradient(i, L);
+      block.set_velocity_gradient(i, L);
     }
-    update_stress_block(points, p0, m, *block, dt);
+    update_stress_block(points, p0, m, block, dt);
     for (size_t i = 0; i < m; ++i) {
       if (prescribed) hold_prescribed(points, bc, p0 + i, vb[i]);
       move_point(points, p0 + i, vb[i], dt);

@@ -83,10 +83,41 @@ class MpmSolver {
             std::vector<std::unique_ptr<Material>> materials, SolverOptions options)
       : MpmSolver(GridPatch::whole(grid), std::move(shape), std::move(materials), options) {}
 
-  // Advances the points by dt. Points end wrapped on periodic axes and may
-  // have left this solver's box (the caller migrates them). Throws
-  // pbms::Error naming the point (id, position) if one leaves the grid.
+  // Advances the points by dt: the phases below, in order. Points end
+  // wrapped on periodic axes and may have left this solver's box (the
+  // caller migrates them). Throws pbms::Error naming the point (id,
+  // position) if one leaves the grid.
   void step(MaterialPoints& points, const BoundaryConditions& bc, double dt);
+
+  // The phases of one step, for a coupling scheme that adds another
+  // program's part of the nodal sums between them (the order of CB-Geo
+  // mpm's explicit scheme). Each must follow the one before it; a phase
+  // out of order throws pbms::Error. Between map_to_grid and update_nodes
+  // nodal_sums() holds mass, momentum and force; between map_to_points and
+  // update_stress_and_move it holds the remapped momentum.
+  void begin_step(const MaterialPoints& points);  // mass floor, DDMP operator
+  // s-1 to s-4 from this solver's points (update-stress-first also updates
+  // the stress first, summing over this solver's ranks on its own).
+  void map_to_grid(MaterialPoints& points, const BoundaryConditions& bc, double dt);
+  void complete_nodal_sums();  // over this solver's ranks (GridPatch::sum_shared)
+  // s-5, s-6 and the essential and rigid-group conditions.
+  void update_nodes(const BoundaryConditions& bc, double dt);
+  // s-7 for the point velocities, and the remap of their momenta (s-10);
+  // under update-stress-first, the move (s-8).
+  void map_to_points(MaterialPoints& points, const BoundaryConditions& bc, double dt);
+  void complete_remap_sums();  // over this solver's ranks
+  // s-11 to s-14 and the move (s-8), update-stress-last.
+  void update_stress_and_move(MaterialPoints& points, const BoundaryConditions& bc, double dt);
+
+  // The nodal sums of this solver's patch, `stride` doubles per node in
+  // patch().nodes' local order: lane 0 mass, 1-3 momentum, 4-6 force
+  // (node_lanes.hpp).
+  struct NodalSums {
+    double* data;
+    int stride;
+    grid::NodeBox nodes;
+  };
+  [[nodiscard]] NodalSums nodal_sums();
 
   // The largest stable time step over these points: h / max_p (c_p + |v_p|).
   [[nodiscard]] double stable_time_step(const MaterialPoints& points) const;
@@ -110,11 +141,28 @@ class MpmSolver {
   [[nodiscard]] const Vec3& nodal_force(size_t local) const { return node_force_[local]; }
 
  private:
-  // The particle passes of one step, over a shape-function evaluator (the
-  // generic virtual one, or an inlined one for a known style).
+  enum class Phase {
+    kBegin,
+    kMapToGrid,
+    kCompleteNodalSums,
+    kUpdateNodes,
+    kMapToPoints,
+    kCompleteRemapSums,
+    kUpdateStress
+  };
+  // Checks that `next` is the phase due and moves on to the one after it.
+  void enter(Phase next);
+  // Runs a particle pass with a shape-function evaluator: an inlined one
+  // for the linear style, the generic virtual one otherwise.
+  template <class F>
+  void with_eval(F&& pass);
   template <class Eval>
-  void step_passes(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
-                   double dt);
+  void grid_to_points(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
+                      double dt);
+  template <class Eval>
+  void stress_and_move(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
+                       double dt);
+  void hold_rigid_nodes(const BoundaryConditions& bc, double dt);
   // Throws, naming the point, if it is outside this solver's box.
   void evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const;
   [[nodiscard]] bool inside(const Vec3& x) const;
@@ -177,6 +225,9 @@ class MpmSolver {
   std::unique_ptr<grid::ShapeFunction> shape_;
   std::vector<std::unique_ptr<Material>> materials_;
   SolverOptions opt_;
+  bool linear_;
+  std::unique_ptr<MaterialBlock> block_;  // the stress update's scratch
+  Phase phase_ = Phase::kBegin;
   double mass_floor_ = 0.0;
   // Per node: mass, momentum, force (sums:: lanes), summed across ranks in
   // one exchange.

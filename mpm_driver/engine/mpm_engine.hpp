@@ -1,0 +1,79 @@
+// The decomposed MPM engine the mpm_driver stages run: the grid split over
+// the driver's ranks, the sums of the nodes neighbouring boxes share, the
+// solver, the material points this rank owns and their migration between
+// ranks. The MPI stays in the partition, halo-sum and migration classes.
+//
+// A stage calls step(); a coupling scheme calls the phases one by one and
+// adds another program's part of the nodal sums between them.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+
+#include "pbms/grid/grid_partition.hpp"
+#include "pbms/mpi/halo_sum.hpp"
+#include "solver/mpm_solver.hpp"
+#include "stage/mpm_model.hpp"
+
+namespace pbms::mpm {
+
+class MpmEngine {
+ public:
+  // Every rank passes the same model (every point of every body, in id
+  // order); each keeps the points its cells own. `comm` must outlive the
+  // engine.
+  MpmEngine(MPI_Comm comm, MpmModel model, MaterialSet materials);
+  MpmEngine(const MpmEngine&) = delete;
+  MpmEngine& operator=(const MpmEngine&) = delete;
+
+  // One step: the phases below in order, then the migration.
+  void step(double dt);
+
+  // The solver's phases on this rank's points (MpmSolver), then the
+  // migration of points that left this rank's cells. Collective.
+  void begin_step() { solver_->begin_step(model_.points); }
+  void map_to_grid(double dt) { solver_->map_to_grid(model_.points, model_.bc, dt); }
+  void complete_nodal_sums() { solver_->complete_nodal_sums(); }
+  void update_nodes(double dt) { solver_->update_nodes(model_.bc, dt); }
+  void map_to_points(double dt) { solver_->map_to_points(model_.points, model_.bc, dt); }
+  void complete_remap_sums() { solver_->complete_remap_sums(); }
+  void update_stress_and_move(double dt) {
+    solver_->update_stress_and_move(model_.points, model_.bc, dt);
+  }
+  void migrate();
+
+  // The largest stable time step over every rank's points (CFL bound).
+  [[nodiscard]] double stable_time_step() const;
+
+  [[nodiscard]] MaterialPoints& points() { return model_.points; }
+  [[nodiscard]] const MaterialPoints& points() const { return model_.points; }
+  [[nodiscard]] const MpmModel& model() const { return model_; }
+  [[nodiscard]] MpmSolver& solver() { return *solver_; }
+  [[nodiscard]] const MpmSolver& solver() const { return *solver_; }
+  [[nodiscard]] const grid::GridPartition& partition() const { return partition_; }
+  // The nodes this rank writes (each node of the grid on one rank only).
+  [[nodiscard]] grid::NodeBox owned_nodes() const { return partition_.owned_nodes_of(rank_); }
+  [[nodiscard]] std::int64_t total_points() const { return total_points_; }
+  [[nodiscard]] std::int64_t step_count() const { return steps_; }
+  [[nodiscard]] MPI_Comm comm() const { return comm_; }
+  [[nodiscard]] int rank() const { return rank_; }
+  [[nodiscard]] int ranks() const { return ranks_; }
+
+ private:
+  void keep_own_points();
+  [[nodiscard]] GridPatch patch();
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  int ranks_ = 1;
+  MpmModel model_;
+  std::int64_t total_points_ = 0;
+  std::int64_t steps_ = 0;
+  grid::GridPartition partition_;
+  mpi::HaloSum halo_;
+  std::unique_ptr<MpmSolver> solver_;
+};
+
+}  // namespace pbms::mpm

@@ -1,0 +1,92 @@
+#include "mpm_output.hpp"
+
+#include <numeric>
+
+#include "rows_on_rank_zero.hpp"
+
+namespace pbms::mpm {
+
+MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
+                     const std::filesystem::path& stage_dir, const std::string& stage)
+    : params_(params), stage_(stage) {
+  const auto& g = engine.model().grid;
+  for (std::size_t a = 0; a < 3; ++a) edges_[a] = g.upper()[a] - g.origin()[a];
+  // Particles are gathered to rank 0 and written in id order, so the file
+  // does not depend on the decomposition.
+  if (params.particles_every > 0 && engine.rank() == 0) {
+    H5mdWriter::Options o;
+    o.path = (stage_dir / "particles.h5md").string();
+    o.creator_version = "mpm_driver";
+    o.periodic = engine.model().periodic;
+    o.velocities = true;
+    std::vector<std::int64_t> ids(static_cast<std::size_t>(engine.total_points()));
+    std::iota(ids.begin(), ids.end(), std::int64_t{0});
+    particles_ =
+        std::make_unique<H5mdWriter>(MPI_COMM_SELF, o, ids, std::vector<int>(ids.size(), 0));
+  }
+  if (params.grid_every > 0) {
+    grid_ = std::make_unique<GridFieldWriter>(engine.comm(), (stage_dir / "grid").string(), g,
+                                              engine.owned_nodes());
+  }
+}
+
+void MpmOutput::write(const MpmEngine& engine, std::int64_t step, double t) {
+  if (params_.particles_every > 0 && step % params_.particles_every == 0)
+    write_particles(engine, step, t);
+  if (grid_ && step > 0 && step % params_.grid_every == 0) write_grid(engine, step, t);
+}
+
+void MpmOutput::write_particles(const MpmEngine& engine, std::int64_t step, double t) {
+  const MaterialPoints& pts = engine.points();
+  std::vector<double> rows;
+  rows.reserve(pts.size() * 7);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    rows.push_back(static_cast<double>(pts.id[i]));
+    rows.insert(rows.end(), pts.x[i].begin(), pts.x[i].end());
+    rows.insert(rows.end(), pts.v[i].begin(), pts.v[i].end());
+  }
+  const auto all = rows_on_rank_zero(engine.comm(), rows, 7);
+  if (!particles_) return;
+  std::vector<double> x, v;
+  for (std::size_t r = 0; r + 7 <= all.size(); r += 7) {
+    x.insert(x.end(), all.begin() + static_cast<std::ptrdiff_t>(r + 1),
+             all.begin() + static_cast<std::ptrdiff_t>(r + 4));
+    v.insert(v.end(), all.begin() + static_cast<std::ptrdiff_t>(r + 4),
+             all.begin() + static_cast<std::ptrdiff_t>(r + 7));
+  }
+  particles_->write_frame(step, t, edges_, x, v);
+}
+
+void MpmOutput::write_grid(const MpmEngine& engine, std::int64_t step, double t) {
+  const MpmSolver& solver = engine.solver();
+  const grid::NodeBox owned = engine.owned_nodes();
+  const auto& local = solver.patch().nodes;
+  std::vector<double> mass, vel;
+  for (int k = owned.lo[2]; k < owned.hi[2]; ++k) {
+    for (int j = owned.lo[1]; j < owned.hi[1]; ++j) {
+      for (int i = owned.lo[0]; i < owned.hi[0]; ++i) {
+        const auto li = static_cast<std::size_t>(local.local_index({i, j, k}));
+        mass.push_back(solver.nodal_mass(li));
+        const auto& v = solver.nodal_velocity(li);
+        vel.insert(vel.end(), v.begin(), v.end());
+      }
+    }
+  }
+  const bool metal = params_.metal_units;
+  grid_->write_frame(step, t,
+                     {{"mass", metal ? "g/mol" : "1", 1, mass.data()},
+                      {"velocity", metal ? "Å/ps" : "1", 3, vel.data()}});
+}
+
+std::vector<std::string> MpmOutput::files() const {
+  std::vector<std::string> out;
+  const std::filesystem::path dir(stage_);
+  if (particles_) out.push_back((dir / "particles.h5md").string());
+  if (grid_) {
+    out.push_back((dir / "grid.h5").string());
+    out.push_back((dir / "grid.xdmf").string());
+  }
+  return out;
+}
+
+}  // namespace pbms::mpm
