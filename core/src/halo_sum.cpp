@@ -1,5 +1,6 @@
 #include "pbms/mpi/halo_sum.hpp"
 
+#include "pbms/grid/for_each_node.hpp"
 #include "pbms/mpi/comm.hpp"
 
 namespace pbms::mpi {
@@ -9,13 +10,6 @@ namespace {
 // of a two-box axis): the shift as a base-3 number.
 int tag_of(const std::array<int, 3>& s) {
   return 100 + (s[0] + 1) + 3 * (s[1] + 1) + 9 * (s[2] + 1);
-}
-
-template <typename F>
-void for_each_node(const grid::NodeBox& box, F&& f) {
-  for (int k = box.lo[2]; k < box.hi[2]; ++k)
-    for (int j = box.lo[1]; j < box.hi[1]; ++j)
-      for (int i = box.lo[0]; i < box.hi[0]; ++i) f(std::array<int, 3>{i, j, k});
 }
 
 }  // namespace
@@ -40,7 +34,7 @@ void HaloSum::sum(double* data, int components, int stride) {
     const auto& ov = overlaps_[o];
     auto& buf = send_[o];
     buf.clear();
-    for_each_node(ov.nodes, [&](const std::array<int, 3>& ijk) {
+    grid::for_each_node(ov.nodes, [&](const std::array<int, 3>& ijk) {
       const double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
       buf.insert(buf.end(), d, d + nc);
     });
@@ -60,7 +54,7 @@ void HaloSum::sum(double* data, int components, int stride) {
   // k, j, i order.
   for (size_t o = 0; o < overlaps_.size(); ++o) {
     const double* r = recv_[o].data();
-    for_each_node(overlaps_[o].nodes, [&](const std::array<int, 3>& ijk) {
+    grid::for_each_node(overlaps_[o].nodes, [&](const std::array<int, 3>& ijk) {
       double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
       for (size_t c = 0; c < nc; ++c) d[c] += *r++;
     });

@@ -1,0 +1,82 @@
+// The ghost exchange across programs (METHOD.md §3, step 1): the ranks of
+// one program (the MPM side) send the ranks of another (the DPD side)
+// their points within `reach` (cutoff + skin) of the receiver's sub-box,
+// so that pair forces can take them as partners. Rank to rank between the
+// pairs whose boxes come within reach (found once, from the boxes both
+// sides exchange at set-up); periodic images arrive already shifted next
+// to the receiver. Never through a root, and the coupler is not involved.
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "pbms/coupling/nodal_sum_across_programs.hpp"
+
+namespace pbms::coupling {
+
+using Vec3 = std::array<double, 3>;
+
+// [lo, hi) per axis; ±infinity where a rank owns everything beyond the box.
+struct SpaceBox {
+  Vec3 lo{};
+  Vec3 hi{};
+};
+
+// The periodic lengths of the body's box (0 on axes that are not periodic).
+struct PeriodicLengths {
+  Vec3 length{0.0, 0.0, 0.0};
+};
+
+// One ghost: a point of the sending program, at the image next to the
+// receiver's box.
+struct GhostPoint {
+  std::int64_t id = 0;
+  Vec3 x{};
+  Vec3 v{};
+  double mass = 0.0;
+};
+
+class PointGhostsAcrossPrograms {
+ public:
+  enum class Side { kSender, kReceiver };
+
+  // Collective over both programs' ranks (one exchange of boxes over the
+  // intercommunicator `inter`, which must outlive this). A sender passes
+  // the box its points lie in; a receiver the box it needs ghosts around.
+  PointGhostsAcrossPrograms(MPI_Comm inter, Side side, const SpaceBox& box, double reach,
+                            const PeriodicLengths& periodic);
+
+  // Sender: every point within reach of each receiver that needs it.
+  void send(const std::vector<std::int64_t>& id, const std::vector<Vec3>& x,
+            const std::vector<Vec3>& v, const std::vector<double>& mass);
+  // Receiver: the ghosts of this step, by sender rank then sender order.
+  const std::vector<GhostPoint>& receive();
+
+  // Ranks of the other program this one exchanges with (each step).
+  [[nodiscard]] const std::vector<int>& peers() const { return peers_; }
+  [[nodiscard]] const ExchangeProfile& profile() const { return profile_; }
+
+ private:
+  // The shifts (in periodic lengths) under which `from` comes within reach
+  // of `to`.
+  [[nodiscard]] std::vector<std::array<int, 3>> images(const SpaceBox& from,
+                                                       const SpaceBox& to) const;
+
+  MPI_Comm inter_;
+  Side side_;
+  double reach_;
+  PeriodicLengths periodic_;
+  std::vector<SpaceBox> remote_boxes_;
+  std::vector<int> peers_;
+  std::vector<std::vector<std::array<int, 3>>> peer_images_;  // per peer
+  std::vector<std::vector<double>> send_buf_;
+  std::vector<MPI_Request> requests_;
+  std::vector<double> recv_buf_;
+  std::vector<GhostPoint> ghosts_;
+  ExchangeProfile profile_;
+};
+
+}  // namespace pbms::coupling

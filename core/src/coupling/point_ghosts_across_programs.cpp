@@ -1,0 +1,141 @@
+#include "pbms/coupling/point_ghosts_across_programs.hpp"
+
+#include <cmath>
+
+#include "pbms/mpi/comm.hpp"
+
+namespace pbms::coupling {
+namespace {
+
+constexpr int kGhostTag = 400;
+constexpr std::size_t kRecord = 8;  // id, x, v, mass
+
+// Distance from x to the box along one axis (0 inside).
+double gap(double x, double lo, double hi) {
+  if (x < lo) return lo - x;
+  if (x > hi) return x - hi;
+  return 0.0;
+}
+
+bool within(const Vec3& x, const SpaceBox& b, double reach) {
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (gap(x[a], b.lo[a], b.hi[a]) > reach) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+PointGhostsAcrossPrograms::PointGhostsAcrossPrograms(MPI_Comm inter, Side side, const SpaceBox& box,
+                                                     double reach, const PeriodicLengths& periodic)
+    : inter_(inter), side_(side), reach_(reach), periodic_(periodic) {
+  int remote = 0;
+  mpi::check(MPI_Comm_remote_size(inter, &remote), "MPI_Comm_remote_size");
+  // On an intercommunicator every rank receives the remote group's boxes.
+  std::array<double, 6> mine{box.lo[0], box.lo[1], box.lo[2], box.hi[0], box.hi[1], box.hi[2]};
+  std::vector<double> theirs(6 * static_cast<std::size_t>(remote));
+  mpi::check(MPI_Allgather(mine.data(), 6, MPI_DOUBLE, theirs.data(), 6, MPI_DOUBLE, inter),
+             "MPI_Allgather (ghost boxes across programs)");
+  for (int r = 0; r < remote; ++r) {
+    const double* b = theirs.data() + 6 * static_cast<std::size_t>(r);
+    remote_boxes_.push_back({{b[0], b[1], b[2]}, {b[3], b[4], b[5]}});
+  }
+  for (int r = 0; r < remote; ++r) {
+    const bool sender = side == Side::kSender;
+    auto shifts = sender ? images(box, remote_boxes_[r]) : images(remote_boxes_[r], box);
+    if (shifts.empty()) continue;
+    peers_.push_back(r);
+    peer_images_.push_back(std::move(shifts));
+  }
+  send_buf_.resize(peers_.size());
+}
+
+std::vector<std::array<int, 3>> PointGhostsAcrossPrograms::images(const SpaceBox& from,
+                                                                  const SpaceBox& to) const {
+  std::vector<std::array<int, 3>> out;
+  for (int sz = -1; sz <= 1; ++sz) {
+    for (int sy = -1; sy <= 1; ++sy) {
+      for (int sx = -1; sx <= 1; ++sx) {
+        const std::array<int, 3> s{sx, sy, sz};
+        bool ok = true;
+        for (std::size_t a = 0; a < 3 && ok; ++a) {
+          const double l = periodic_.length[a];
+          if (s[a] != 0 && l <= 0.0) {
+            ok = false;
+            continue;
+          }
+          // The shifted sender box [lo, hi) against the receiver's, grown.
+          const double lo = from.lo[a] + s[a] * l, hi = from.hi[a] + s[a] * l;
+          ok = lo <= to.hi[a] + reach_ && hi >= to.lo[a] - reach_;
+        }
+        if (ok) out.push_back(s);
+      }
+    }
+  }
+  return out;
+}
+
+void PointGhostsAcrossPrograms::send(const std::vector<std::int64_t>& id,
+                                     const std::vector<Vec3>& x, const std::vector<Vec3>& v,
+                                     const std::vector<double>& mass) {
+  const double start = MPI_Wtime();
+  requests_.assign(peers_.size(), MPI_REQUEST_NULL);
+  for (std::size_t p = 0; p < peers_.size(); ++p) {
+    const SpaceBox& to = remote_boxes_[static_cast<std::size_t>(peers_[p])];
+    auto& buf = send_buf_[p];
+    buf.clear();
+    for (const auto& s : peer_images_[p]) {
+      for (std::size_t i = 0; i < id.size(); ++i) {
+        Vec3 xi = x[i];
+        for (std::size_t a = 0; a < 3; ++a) xi[a] += s[a] * periodic_.length[a];
+        if (!within(xi, to, reach_)) continue;
+        buf.insert(buf.end(), {static_cast<double>(id[i]), xi[0], xi[1], xi[2], v[i][0], v[i][1],
+                               v[i][2], mass[i]});
+      }
+    }
+    mpi::check(MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peers_[p], kGhostTag,
+                         inter_, &requests_[p]),
+               "MPI_Isend (ghosts across programs)");
+    profile_.bytes_sent += static_cast<std::int64_t>(buf.size() * sizeof(double));
+  }
+  profile_.messages_sent += static_cast<std::int64_t>(peers_.size());
+  const double posted = MPI_Wtime();
+  mpi::check(MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE),
+             "MPI_Waitall (ghosts across programs)");
+  ++profile_.exchanges;
+  profile_.seconds_packing += posted - start;
+  profile_.seconds_waiting += MPI_Wtime() - posted;
+}
+
+const std::vector<GhostPoint>& PointGhostsAcrossPrograms::receive() {
+  ghosts_.clear();
+  double waiting = 0.0;
+  const double start = MPI_Wtime();
+  for (const int peer : peers_) {
+    const double before = MPI_Wtime();
+    MPI_Message message = MPI_MESSAGE_NULL;
+    MPI_Status status;
+    mpi::check(MPI_Mprobe(peer, kGhostTag, inter_, &message, &status),
+               "MPI_Mprobe (ghosts across programs)");
+    int count = 0;
+    mpi::check(MPI_Get_count(&status, MPI_DOUBLE, &count), "MPI_Get_count");
+    recv_buf_.resize(static_cast<std::size_t>(count));
+    mpi::check(MPI_Mrecv(recv_buf_.data(), count, MPI_DOUBLE, &message, MPI_STATUS_IGNORE),
+               "MPI_Mrecv (ghosts across programs)");
+    waiting += MPI_Wtime() - before;
+    profile_.bytes_received += static_cast<std::int64_t>(count) * 8;
+    for (std::size_t r = 0; r + kRecord <= recv_buf_.size(); r += kRecord) {
+      const double* d = recv_buf_.data() + r;
+      ghosts_.push_back({static_cast<std::int64_t>(std::llround(d[0])),
+                         {d[1], d[2], d[3]},
+                         {d[4], d[5], d[6]},
+                         d[7]});
+    }
+  }
+  ++profile_.exchanges;
+  profile_.seconds_waiting += waiting;
+  profile_.seconds_packing += MPI_Wtime() - start - waiting;
+  return ghosts_;
+}
+
+}  // namespace pbms::coupling
