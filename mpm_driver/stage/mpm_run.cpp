@@ -206,6 +206,7 @@ void MpmRunStage::run(StageContext& ctx) {
     o.path = (ctx.stage_dir() / "particles.h5md").string();
     o.creator_version = "mpm_driver";
     o.periodic = model.periodic;
+    o.metal_units = metal;
     o.velocities = true;
     all_ids.resize(static_cast<size_t>(total_points));
     std::iota(all_ids.begin(), all_ids.end(), int64_t{0});
