@@ -7,6 +7,9 @@
 namespace pbms {
 namespace {
 
+// 1 eV = e N_A / 1000 kJ/mol, exactly, with the SI's fixed e and N_A.
+constexpr double kKilojoulePerMolePerEv = 96.48533212331002;
+
 void write_fixed(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                  const void* local, hsize_t n_local, hsize_t offset, hsize_t n_total, hid_t dxpl) {
   h5::Handle fspace(H5Screate_simple(1, &n_total, nullptr), H5Sclose);
@@ -76,12 +79,18 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
   std::vector<std::string> boundary;
   for (bool p : opt.periodic) boundary.push_back(p ? "periodic" : "none");
   write_string_array(box.id(), "boundary", boundary);
-  edges_ = make_series(box.id(), "edges", 1, 3, "angstrom");
-  position_ = make_series(all.id(), "position", 2, n_total_, "angstrom");
-  if (opt.velocities) velocity_ = make_series(all.id(), "velocity", 2, n_total_, "angstrom ps-1");
-  if (opt.forces) force_ = make_series(all.id(), "force", 2, n_total_, "eV angstrom-1");
+  const bool metal = opt.metal_units;
+  edges_ = make_series(box.id(), "edges", 2, 3, metal ? "Angstrom" : nullptr);
+  position_ = make_series(all.id(), "position", 2, n_total_, metal ? "Angstrom" : nullptr);
+  if (opt.velocities) {
+    velocity_ = make_series(all.id(), "velocity", 2, n_total_, metal ? "Angstrom ps-1" : nullptr);
+  }
+  if (opt.forces) {
+    force_ = make_series(all.id(), "force", 2, n_total_, metal ? "kJ mol-1 Angstrom-1" : nullptr);
+  }
   if (opt.internal_energy) {
-    internal_energy_ = make_series(all.id(), "internal_energy", 1, n_total_, "eV");
+    internal_energy_ =
+        make_series(all.id(), "internal_energy", 1, n_total_, metal ? "eV" : nullptr);
   }
 
   std::vector<long long> id_ll(ids.begin(), ids.end());
@@ -92,7 +101,7 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
 }
 
 H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name, int rank_dims,
-                                               hsize_t n, const std::string& unit) {
+                                               hsize_t n, const char* unit) {
   TimeSeries ts;
   ts.group = h5::require_group(parent, name);
   auto make = [&](const char* dname, int nd, const hsize_t* dims, const hsize_t* chunk,
@@ -109,20 +118,21 @@ H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& 
   const hsize_t zero1[1] = {0}, chunk1[1] = {64};
   ts.step = make("step", 1, zero1, chunk1, H5T_STD_I64LE);
   ts.time = make("time", 1, zero1, chunk1, H5T_IEEE_F64LE);
-  h5::write_attribute(ts.time.id(), "unit", std::string("ps"));
+  if (unit != nullptr) h5::write_vlen_attribute(ts.time.id(), "unit", "ps");
   if (rank_dims == 1) {
-    // Small rows (the box edges) batch frames per chunk; per-particle rows
-    // take one frame per chunk, capped, as the vector series do. HDF5
-    // refuses zero-sized chunk dimensions, hence the floor of 1.
+    // Small rows (few particles, or the 3 x 3 box edges below) batch frames
+    // per chunk; larger ones take one frame per chunk, capped. HDF5 refuses
+    // zero-sized chunk dimensions, hence the floor of 1.
     const hsize_t width = std::max<hsize_t>(1, std::min<hsize_t>(n, 65536));
     const hsize_t dims[2] = {0, n}, chunk[2] = {n <= 64 ? hsize_t{16} : hsize_t{1}, width};
     ts.value = make("value", 2, dims, chunk, H5T_IEEE_F64LE);
   } else {
     const hsize_t dims[3] = {0, n, 3};
-    const hsize_t chunk[3] = {1, std::max<hsize_t>(1, std::min<hsize_t>(n, 65536)), 3};
+    const hsize_t chunk[3] = {n <= 64 ? hsize_t{16} : hsize_t{1},
+                              std::max<hsize_t>(1, std::min<hsize_t>(n, 65536)), 3};
     ts.value = make("value", 3, dims, chunk, H5T_IEEE_F64LE);
   }
-  h5::write_attribute(ts.value.id(), "unit", unit);
+  if (unit != nullptr) h5::write_vlen_attribute(ts.value.id(), "unit", unit);
   return ts;
 }
 
@@ -187,12 +197,20 @@ void H5mdWriter::write_frame(int64_t step, double time_ps, const std::array<doub
   }
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
-  append(edges_, step, time_ps, box_edges.data(), rank == 0 ? 3 : 0, 0, 3, 1);
+  const std::array<double, 9> matrix = {box_edges[0], 0.0, 0.0, 0.0,         box_edges[1],
+                                        0.0,          0.0, 0.0, box_edges[2]};
+  append(edges_, step, time_ps, matrix.data(), rank == 0 ? 3 : 0, 0, 3, 3);
   append(position_, step, time_ps, positions.data(), n_local_, offset_, n_total_, 3);
   if (opt_.velocities) {
     append(velocity_, step, time_ps, velocities.data(), n_local_, offset_, n_total_, 3);
   }
-  if (opt_.forces) append(force_, step, time_ps, forces.data(), n_local_, offset_, n_total_, 3);
+  if (opt_.forces) {
+    std::vector<double> f = forces;
+    if (opt_.metal_units) {
+      for (double& c : f) c *= kKilojoulePerMolePerEv;
+    }
+    append(force_, step, time_ps, f.data(), n_local_, offset_, n_total_, 3);
+  }
   if (opt_.internal_energy) {
     append(internal_energy_, step, time_ps, internal_energy.data(), n_local_, offset_, n_total_, 1);
   }

@@ -1,5 +1,7 @@
 #include "pbms/io/hdf5.hpp"
 
+#include <cstdio>
+#include <exception>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -34,12 +36,54 @@ Handle create_truncate(const std::string& path, MPI_Comm comm) {
   return Handle(f, H5Fclose);
 }
 
-Handle open_or_create(const std::string& path, MPI_Comm comm) {
-  if (!std::filesystem::exists(path)) return create_truncate(path, comm);
-  Handle fapl = file_access(comm);
-  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.id());
-  if (f < 0) throw Error(fmt::format("cannot open HDF5 file '{}'", path));
-  return Handle(f, H5Fclose);
+namespace {
+constexpr const char* kUpdateSuffix = ".tmp";
+
+// Closer of open_or_create()'s handle: closes the copy, then publishes it by
+// a rename (atomic within a directory), or drops it when the close failed
+// or an exception is unwinding. A closer cannot throw; it says what failed.
+herr_t close_and_publish(hid_t f) {
+  const ssize_t len = H5Fget_name(f, nullptr, 0);
+  std::string copy(len > 0 ? static_cast<std::size_t>(len) : 0, '\0');
+  if (len > 0) H5Fget_name(f, copy.data(), copy.size() + 1);
+  const herr_t closed = H5Fclose(f);
+  const std::string suffix = kUpdateSuffix;
+  if (copy.size() <= suffix.size()) return closed;
+  const std::string path = copy.substr(0, copy.size() - suffix.size());
+  std::error_code ec;
+  if (closed < 0 || std::uncaught_exceptions() > 0) {
+    std::filesystem::remove(copy, ec);
+    if (closed < 0) {
+      fmt::print(stderr, "pbms: closing '{}' failed; '{}' is unchanged\n", copy, path);
+    }
+    return closed;
+  }
+  std::filesystem::rename(copy, path, ec);
+  if (ec) {
+    fmt::print(stderr, "pbms: cannot rename '{}' to '{}': {}\n", copy, path, ec.message());
+    return -1;
+  }
+  return 0;
+}
+}  // namespace
+
+Handle open_or_create(const std::string& path) {
+  const std::string copy = path + kUpdateSuffix;
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(path);
+  if (existed) {
+    std::filesystem::copy_file(path, copy, std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) throw Error(fmt::format("cannot copy '{}' to '{}': {}", path, copy, ec.message()));
+  }
+  // Closing the file closes whatever is still open in it, so that the
+  // rename never publishes a file with unwritten objects.
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  H5Pset_fclose_degree(fapl.id(), H5F_CLOSE_STRONG);
+  // A copy left by a crash is overwritten either way.
+  const hid_t f = existed ? H5Fopen(copy.c_str(), H5F_ACC_RDWR, fapl.id())
+                          : H5Fcreate(copy.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
+  if (f < 0) throw Error(fmt::format("cannot open HDF5 file '{}'", copy));
+  return Handle(f, close_and_publish);
 }
 
 bool exists(hid_t parent, const std::string& name) {
@@ -75,6 +119,18 @@ void write_attribute(hid_t obj, const std::string& name, const std::string& valu
   Handle attr(H5Acreate2(obj, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
               H5Aclose);
   H5Awrite(attr.id(), type.id(), value.empty() ? "" : value.c_str());
+}
+
+void write_vlen_attribute(hid_t obj, const std::string& name, const std::string& value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.id(), H5T_VARIABLE);
+  H5Tset_cset(type.id(), H5T_CSET_ASCII);
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(obj, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose);
+  const char* text = value.c_str();
+  H5Awrite(attr.id(), type.id(), &text);
 }
 
 void write_attribute(hid_t obj, const std::string& name, double value) {

@@ -18,6 +18,7 @@ MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
     o.path = (stage_dir / "particles.h5md").string();
     o.creator_version = "mpm_driver";
     o.periodic = engine.model().periodic;
+    o.metal_units = params.metal_units;
     o.velocities = true;
     std::vector<std::int64_t> ids(static_cast<std::size_t>(engine.total_points()));
     std::iota(ids.begin(), ids.end(), std::int64_t{0});

@@ -165,23 +165,127 @@ TEST(H5mdReader, RoundTripThroughWriter) {
     std::vector<hsize_t> dims(static_cast<size_t>(H5Sget_simple_extent_ndims(space.id())));
     H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
     EXPECT_EQ(dims, want_dims) << name;
+    // Units are variable-length strings (h5py, and so MDAnalysis, reads
+    // them as str).
     Handle attr(H5Aopen(ds.id(), "unit", H5P_DEFAULT), H5Aclose);
     Handle type(H5Aget_type(attr.id()), H5Tclose);
-    std::string u(H5Tget_size(type.id()), '\0');
-    H5Aread(attr.id(), type.id(), u.data());
-    EXPECT_EQ(u, unit) << name;
+    EXPECT_GT(H5Tis_variable_str(type.id()), 0) << name;
+    char* text = nullptr;
+    H5Aread(attr.id(), type.id(), &text);
+    EXPECT_STREQ(text, unit) << name;
+    H5free_memory(text);
     std::vector<double> v(static_cast<size_t>(H5Sget_simple_extent_npoints(space.id())));
     H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
     return v;
   };
-  const auto force = read_all("particles/all/force/value", {2, 3, 3}, "eV angstrom-1");
+  // Forces are given in eV/angstrom and stored in a unit MDAnalysis knows.
+  const auto force = read_all("particles/all/force/value", {2, 3, 3}, "kJ mol-1 Angstrom-1");
+  const double kj_per_mol_per_ev = 96.48533212331002;
   for (size_t i = 0; i < 9; ++i) {
-    EXPECT_DOUBLE_EQ(force[i], f0[i]);
-    EXPECT_DOUBLE_EQ(force[9 + i], f1[i]);
+    EXPECT_DOUBLE_EQ(force[i], f0[i] * kj_per_mol_per_ev);
+    EXPECT_DOUBLE_EQ(force[9 + i], f1[i] * kj_per_mol_per_ev);
   }
+  read_all("particles/all/position/value", {2, 3, 3}, "Angstrom");
+  read_all("particles/all/velocity/value", {2, 3, 3}, "Angstrom ps-1");
+  read_all("particles/all/position/time", {2}, "ps");
+  // The box as a diagonal matrix per frame: MDAnalysis reads the vector
+  // form of H5MD as an empty box.
+  const auto edges = read_all("particles/all/box/edges/value", {2, 3, 3}, "Angstrom");
+  EXPECT_EQ(edges, (std::vector<double>{10, 0, 0, 0, 11, 0, 0, 0, 12,  //
+                                        10, 0, 0, 0, 11, 0, 0, 0, 12.5}));
   const auto energy = read_all("particles/all/internal_energy/value", {2, 3}, "eV");
   EXPECT_EQ(energy, (std::vector<double>{0.5, 0.6, 0.7, 1.5, 1.6, 1.7}));
   EXPECT_GT(H5Lexists(f.id(), "particles/all/internal_energy/step", H5P_DEFAULT), 0);
+}
+
+// An MPM run in consistent units: no unit is claimed, nothing is converted.
+TEST(H5mdWriter, ConsistentUnitsCarryNoUnitAttributes) {
+  ScratchDir dir;
+  const auto path = dir.file("unitless.h5md");
+  const std::vector<double> x = {0.1, 0.2, 0.3}, v = {1, 2, 3}, f = {-1, -2, -3};
+  {
+    pbms::H5mdWriter::Options opt;
+    opt.path = path;
+    opt.metal_units = false;
+    opt.velocities = true;
+    opt.forces = true;
+    pbms::H5mdWriter w(MPI_COMM_SELF, opt, {0}, {0});
+    w.write_frame(0, 0.5, {1, 1, 1}, x, v, f);
+  }
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  for (const char* name : {"particles/all/position/value", "particles/all/position/time",
+                           "particles/all/velocity/value", "particles/all/force/value",
+                           "particles/all/box/edges/value"}) {
+    Handle ds(H5Dopen2(file.id(), name, H5P_DEFAULT), H5Dclose);
+    EXPECT_EQ(H5Aexists(ds.id(), "unit"), 0) << name;
+  }
+  Handle ds(H5Dopen2(file.id(), "particles/all/force/value", H5P_DEFAULT), H5Dclose);
+  std::vector<double> stored(3);
+  H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data());
+  EXPECT_EQ(stored, f);
+  EXPECT_EQ(pbms::read_h5md_particles(path).x[0], (std::array<double, 3>{0.1, 0.2, 0.3}));
+}
+
+// --- updates by copy and rename (results.h5) --------------------------------
+
+namespace {
+double read_scalar(const std::string& path, const char* name) {
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  Handle ds(H5Dopen2(f.id(), name, H5P_DEFAULT), H5Dclose);
+  double v = 0;
+  H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v);
+  return v;
+}
+}  // namespace
+
+TEST(H5Update, PublishedWhenClosedWhileAReaderHoldsTheOldFile) {
+  ScratchDir dir;
+  const auto path = dir.file("results.h5");
+  {
+    Handle f = pbms::h5::open_or_create(path);
+    pbms::h5::write_scalar(f.id(), "a", 1.0, "1");
+    EXPECT_FALSE(fs::exists(path)) << "published before the handle closed";
+  }
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  EXPECT_EQ(read_scalar(path, "a"), 1.0);
+
+  // A reader keeps the file open (and, with HDF5 1.10, locked) throughout.
+  Handle reader(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  {
+    Handle f = pbms::h5::open_or_create(path);
+    pbms::h5::write_scalar(f.id(), "b", 2.0, "1");
+    EXPECT_EQ(H5Lexists(reader.id(), "b", H5P_DEFAULT), 0) << "the reader saw half an update";
+  }
+  EXPECT_EQ(H5Lexists(reader.id(), "b", H5P_DEFAULT), 0);
+  reader.reset();
+  EXPECT_EQ(read_scalar(path, "a"), 1.0);
+  EXPECT_EQ(read_scalar(path, "b"), 2.0);
+}
+
+TEST(H5Update, DroppedWhenAnExceptionUnwinds) {
+  ScratchDir dir;
+  const auto path = dir.file("results.h5");
+  {
+    Handle f = pbms::h5::open_or_create(path);
+    pbms::h5::write_scalar(f.id(), "a", 1.0, "1");
+  }
+  try {
+    Handle f = pbms::h5::open_or_create(path);
+    pbms::h5::write_scalar(f.id(), "a", 5.0, "1");
+    throw pbms::Error("a stage's results could not be stored");
+  } catch (const pbms::Error&) {
+  }
+  EXPECT_EQ(read_scalar(path, "a"), 1.0);
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  // A copy left behind by a crash does not stand in for a missing file.
+  const auto fresh = dir.file("fresh.h5");
+  write_text(fresh + ".tmp", "stale");
+  {
+    Handle f = pbms::h5::open_or_create(fresh);
+    pbms::h5::write_scalar(f.id(), "c", 3.0, "1");
+  }
+  EXPECT_EQ(read_scalar(fresh, "c"), 3.0);
 }
 
 // The layout of LAMMPS `dump h5md ... position image velocity every 2

@@ -36,9 +36,17 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-// Opens `path` for read-write, creating it if missing. With a communicator
-// of more than one rank the file is opened collectively through MPI-IO.
-Handle open_or_create(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
+// Updates `path` (one process) without ever having it open for writing:
+// the returned file is a copy of `path` (an empty file when it is missing)
+// named `path` + ".tmp", and closing the handle renames the copy over
+// `path`. A reader of `path` therefore sees the file before or after the
+// update, never half of it, and is never in the writer's way (HDF5 1.10
+// locks the files it opens: a reader holding `path` open would make an
+// in-place writer's open fail, and the other way round). A handle closed
+// while an exception unwinds drops the copy and leaves `path` as it was.
+Handle open_or_create(const std::string& path);
+// With a communicator of more than one rank the file is created collectively
+// through MPI-IO.
 Handle create_truncate(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
 // The group at `path` (slash separated), creating missing parents.
 Handle require_group(hid_t parent, const std::string& path);
@@ -46,6 +54,9 @@ void delete_link_if_exists(hid_t parent, const std::string& name);
 bool exists(hid_t parent, const std::string& name);
 
 void write_attribute(hid_t obj, const std::string& name, const std::string& value);
+// A variable-length ASCII string: h5py reads it as `str` (a fixed-length one
+// as `bytes`), which is what MDAnalysis' H5MD reader looks up units with.
+void write_vlen_attribute(hid_t obj, const std::string& name, const std::string& value);
 void write_attribute(hid_t obj, const std::string& name, double value);
 void write_attribute(hid_t obj, const std::string& name, const std::vector<int>& value);
 // 1-D double dataset with a "unit" attribute.
