@@ -19,9 +19,8 @@ the `solver` that wrote the file (md, dpd or mpm) and `units`. A `type`
 column rather than `species`: ASE takes `species` for chemical symbols.
 
 Units: a run in metal units gives angstrom, ps, angstrom/ps, and forces in
-eV/angstrom (the H5MD file stores them in kJ mol-1 Angstrom-1, the unit
-MDAnalysis knows; they are converted back); `units=metal` on the comment
-line. An MPM run in consistent units has no unit attributes in its H5MD
+eV/angstrom (the H5MD file's own unit; it names it in `pbms_unit`);
+`units=metal` on the comment line. An MPM run in consistent units has no unit attributes in its H5MD
 file; its numbers are copied as they are, with `units=consistent`.
 
 Values are written with 17 significant digits, so a reader gets the H5MD
@@ -39,22 +38,19 @@ import sys
 import h5py
 import numpy as np
 
-# 1 eV = e N_A / 1000 kJ/mol, exactly (SI 2019).
-KJ_PER_MOL_PER_EV = 96.48533212331002
-
 # Units an H5MD file of PBMS may carry, as factors to metal units.
 TO_METAL = {
     "Angstrom": 1.0,
     "Angstrom ps-1": 1.0,
     "ps": 1.0,
     "eV": 1.0,
-    "kJ mol-1 Angstrom-1": 1.0 / KJ_PER_MOL_PER_EV,
+    "eV Angstrom-1": 1.0,
 }
 
 
 def unit_of(dataset):
-    """The dataset's unit attribute as str, or None."""
-    u = dataset.attrs.get("unit")
+    """The dataset's unit attribute as str, or None (forces: `pbms_unit`)."""
+    u = dataset.attrs.get("unit", dataset.attrs.get("pbms_unit"))
     if u is None:
         return None
     return u.decode() if isinstance(u, bytes) else str(u)

@@ -7,9 +7,6 @@
 namespace pbms {
 namespace {
 
-// 1 eV = e N_A / 1000 kJ/mol, exactly, with the SI's fixed e and N_A.
-constexpr double kKilojoulePerMolePerEv = 96.48533212331002;
-
 void write_fixed(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                  const void* local, hsize_t n_local, hsize_t offset, hsize_t n_total, hid_t dxpl) {
   h5::Handle fspace(H5Screate_simple(1, &n_total, nullptr), H5Sclose);
@@ -86,7 +83,13 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
     velocity_ = make_series(all.id(), "velocity", 2, n_total_, metal ? "Angstrom ps-1" : nullptr);
   }
   if (opt.forces) {
-    force_ = make_series(all.id(), "force", 2, n_total_, metal ? "kJ mol-1 Angstrom-1" : nullptr);
+    // Forces stay in metal units, eV/Å, like every PBMS file. MDAnalysis
+    // knows no eV-based force unit and refuses a file with one it does not
+    // know, so the unit goes into `pbms_unit`, not `unit`; MDAnalysis then
+    // reads the file with convert_units=False, which leaves its Å and ps
+    // (its own base units) as they are.
+    force_ = make_series(all.id(), "force", 2, n_total_, metal ? "eV Angstrom-1" : nullptr,
+                         "pbms_unit");
   }
   if (opt.internal_energy) {
     internal_energy_ =
@@ -101,7 +104,8 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
 }
 
 H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name, int rank_dims,
-                                               hsize_t n, const char* unit) {
+                                               hsize_t n, const char* unit,
+                                               const char* unit_attribute) {
   TimeSeries ts;
   ts.group = h5::require_group(parent, name);
   auto make = [&](const char* dname, int nd, const hsize_t* dims, const hsize_t* chunk,
@@ -132,7 +136,7 @@ H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& 
                               std::max<hsize_t>(1, std::min<hsize_t>(n, 65536)), 3};
     ts.value = make("value", 3, dims, chunk, H5T_IEEE_F64LE);
   }
-  if (unit != nullptr) h5::write_vlen_attribute(ts.value.id(), "unit", unit);
+  if (unit != nullptr) h5::write_vlen_attribute(ts.value.id(), unit_attribute, unit);
   return ts;
 }
 
@@ -205,11 +209,7 @@ void H5mdWriter::write_frame(int64_t step, double time_ps, const std::array<doub
     append(velocity_, step, time_ps, velocities.data(), n_local_, offset_, n_total_, 3);
   }
   if (opt_.forces) {
-    std::vector<double> f = forces;
-    if (opt_.metal_units) {
-      for (double& c : f) c *= kKilojoulePerMolePerEv;
-    }
-    append(force_, step, time_ps, f.data(), n_local_, offset_, n_total_, 3);
+    append(force_, step, time_ps, forces.data(), n_local_, offset_, n_total_, 3);
   }
   if (opt_.internal_energy) {
     append(internal_energy_, step, time_ps, internal_energy.data(), n_local_, offset_, n_total_, 1);

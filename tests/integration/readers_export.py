@@ -8,7 +8,7 @@ every `<name>.h5md`. ASE (python3-ase) reads each with ase.io.read, and
 every frame must give back the H5MD file's values exactly (17 significant
 digits are written): ids, species (the `type` column, OVITO's Particle
 Type), positions, velocities (`velo`, OVITO's Velocity), forces in eV/Å
-(stored in the H5MD file in kJ mol-1 Angstrom-1), internal energies, the
+(as in the H5MD file), internal energies, the
 box, periodicity, time and step, and the solver on the comment line.
 """
 
@@ -23,7 +23,6 @@ import numpy as np
 from checklist import Checklist
 from ase.io import read
 
-KJ_PER_MOL_PER_EV = 96.48533212331002
 
 check = Checklist()
 
@@ -61,7 +60,7 @@ def check_file(h5md, solver):
         if not np.array_equal(atoms.arrays["type"], species):
             bad.append(f"types of frame {k}")
         if force is not None:
-            want = force[k] * (1.0 / KJ_PER_MOL_PER_EV) if metal else force[k]
+            want = force[k]
             if not np.array_equal(atoms.get_forces(), want):
                 bad.append(f"forces of frame {k}")
         if energy is not None and not np.array_equal(atoms.arrays["internal_energy"], energy[k]):

@@ -32,6 +32,7 @@ warnings.filterwarnings("ignore", category=DeprecationWarning)
 import MDAnalysis as mda  # noqa: E402
 
 check = Checklist()
+g_force_unit = {}  # path -> the force pbms_unit attribute
 
 
 def same32(a, b):
@@ -45,6 +46,8 @@ def check_file(path):
         x = g["position/value"][()]
         v = g["velocity/value"][()] if "velocity" in g else None
         force = g["force/value"][()] if "force" in g else None
+        if force is not None:
+            g_force_unit[path] = g["force/value"].attrs.get("pbms_unit")
         edges = g["box/edges/value"][()]
         time = g["position/time"][()]
         step = g["position/step"][()]
@@ -59,13 +62,19 @@ def check_file(path):
         except ValueError:
             check(True, f"{name}: no units: MDAnalysis wants convert_units=False, as documented")
 
+    # Forces are in eV/Å, a unit MDAnalysis has no name for (pbms_unit):
+    # such files open with convert_units=False, which leaves Å and ps (its
+    # base units) as they are.
+    convert = metal and force is None
     u = mda.Universe.empty(n, trajectory=False)
-    u.load_new(path, format="H5MD", convert_units=metal)
+    u.load_new(path, format="H5MD", convert_units=convert)
     units = u.trajectory.units
     if metal:
-        want = {"time": "ps", "length": "Angstrom", "velocity": "Angstrom/ps",
-                "force": "kJ/(mol*Angstrom)" if force is not None else None}
+        want = {"time": "ps", "length": "Angstrom", "velocity": "Angstrom/ps", "force": None}
         check(units == want, f"{name}: units {units}")
+    if force is not None:
+        unit = g_force_unit[path]
+        check(unit == "eV Angstrom-1", f"{name}: forces in {unit} (pbms_unit)")
     check(len(u.trajectory) == frames, f"{name}: {len(u.trajectory)} frames of {frames}")
     bad = []
     for k, ts in enumerate(u.trajectory):

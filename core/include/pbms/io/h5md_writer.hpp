@@ -61,8 +61,10 @@ class H5mdWriter {
   struct TimeSeries {
     h5::Handle group, step, time, value;
   };
+  // `unit` (null: none, and none on time either) goes into the attribute
+  // `unit_attribute` of the values.
   TimeSeries make_series(hid_t parent, const std::string& name, int rank_dims, hsize_t n,
-                         const char* unit);
+                         const char* unit, const char* unit_attribute = "unit");
   void append(TimeSeries& ts, int64_t step, double time, const double* data, hsize_t n_local,
               hsize_t offset, hsize_t n_total, hsize_t width);
 
