@@ -5,7 +5,7 @@ md_driver writes each input as it ran it (the MD runs chunk by chunk), and
 each prints its stress averages with %.20g, so the replay follows the same
 trajectory: the stresses and the constants derived from them must agree to
 1e-9 relative (the two means differ by summation order only, ~1e-16; a
-different seed, chunking or rank count moves them by far more than 1e-9).
+different seed or rank count moves them by far more than 1e-9).
 
 usage: elastic_vs_lmp.py RUN_DIR STAGE
 """

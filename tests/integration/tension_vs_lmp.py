@@ -6,7 +6,7 @@ input prints every stress sample with %.20g (PBMS_SAMPLE lines), so the
 replay follows the same trajectory: strain, virial and grip stresses must
 agree to 1e-9 of the largest stress, and Young's modulus refitted from
 lmp's curve to 1e-9 relative. Both differences are round-off of the same
-numbers (~1e-15); a different seed, chunking or rank count moves them by far
+numbers (~1e-15); a different seed or rank count moves them by far
 more.
 
 usage: tension_vs_lmp.py RUN_DIR STAGE
