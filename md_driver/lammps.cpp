@@ -55,7 +55,6 @@ void Lammps::comment(const std::string& text) {
 }
 
 void Lammps::run(int64_t steps, int64_t chunk, const std::function<void(int64_t)>& after_chunk) {
-  script_.push_back(fmt::format("run {}", steps));
   chunk = std::max<int64_t>(1, chunk);
   int64_t done = 0;
   bool first = true;
@@ -67,6 +66,7 @@ void Lammps::run(int64_t steps, int64_t chunk, const std::function<void(int64_t)
     // trajectory without redoing it.
     const std::string cmd = fmt::format("run {} start {} stop {} pre {} post no", n, begin,
                                         begin + steps, first ? "yes" : "no");
+    script_.push_back(cmd);
     lammps_command(handle_, cmd.c_str());
     first = false;
     done += n;

@@ -25,7 +25,11 @@ class Lammps {
   void comment(const std::string& text);  // recorded only
 
   // Runs `steps` MD steps in chunks of `chunk`, calling `after_chunk(done)`
-  // between chunks (progress, trajectory frames). Recorded as one `run`.
+  // between chunks (progress, trajectory frames). Recorded chunk by chunk, as
+  // it ran, so that a plain `lmp -in` of the script on as many ranks repeats
+  // the very commands and follows the same trajectory to the last bit (a run
+  // on another rank count does not: the sums go in another order, and MD
+  // grows that round-off).
   void run(int64_t steps, int64_t chunk, const std::function<void(int64_t)>& after_chunk);
 
   [[nodiscard]] double thermo(const std::string& keyword) const;

@@ -110,6 +110,7 @@ Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::arra
   if (temperature <= 0.0) {
     lmp.command("minimize 0 1e-12 10000 100000");
     lmp.command("run 0");
+    lmp.command("print \"PBMS_STRESS_BAR pxx $(pxx) pyy $(pyy) pzz $(pzz) pxy $(pxy)\"");
     s = {lmp.thermo("pxx") * to_gpa, lmp.thermo("pyy") * to_gpa, lmp.thermo("pzz") * to_gpa,
          lmp.thermo("pxy") * to_gpa};
   } else {
@@ -125,6 +126,11 @@ Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::arra
     lmp.command("variable pxy equal pxy");
     lmp.command("fix samples all vector 10 v_pxx v_pyy v_pzz v_pxy");
     lmp.run(steps_for(p["production"].as<double>(), dt), 1000000, {});
+    // The means md_driver takes below, printed in full so that a plain
+    // `lmp -in` of the script can be compared with them.
+    lmp.command(
+        "print \"PBMS_STRESS_BAR pxx $(ave(f_samples[1])) pyy $(ave(f_samples[2])) "
+        "pzz $(ave(f_samples[3])) pxy $(ave(f_samples[4]))\"");
     const auto rows = lmp.fix_array("samples", 4);
     s = {analysis::mean(column(rows, 0)) * to_gpa, analysis::mean(column(rows, 1)) * to_gpa,
          analysis::mean(column(rows, 2)) * to_gpa, analysis::mean(column(rows, 3)) * to_gpa};

@@ -171,6 +171,12 @@ void TensionStage::run(StageContext& ctx) {
   lmp.command("variable wire_temp equal c_wire_temp");
   lmp.command(
       fmt::format("fix samples all vector {} v_strain v_virial_avg v_grip_avg v_wire_temp", every));
+  // The same samples in the log in full precision, so that a plain `lmp -in`
+  // of the script can be compared with the stress-strain table row by row.
+  lmp.command(fmt::format(
+      "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain) $(v_virial_avg) "
+      "$(v_grip_avg) $(v_wire_temp)\" screen yes",
+      every));
   lmp.run(n_load, chunk, [&](int64_t done) {
     traj.maybe_write(n_equil + done, (n_equil + done) * dt);
     ctx.progress(n_equil + done, total, (n_equil + done) * dt,

@@ -15,4 +15,7 @@ print(f"bulk modulus {b:.2f} GPa, E<100> {r['youngs_modulus_100']['value']:.2f} 
 bad += abs(r["lattice_parameter"]["value"] - 3.615) > 1e-3
 sys.exit(1 if bad else 0)
 PYEOF
+# Every strained crystal of both stages, replayed by plain lmp: equal to 1e-9.
+"$PY" "$(dirname "$0")/elastic_vs_lmp.py" runs/elastic elastic
+"$PY" "$(dirname "$0")/elastic_vs_lmp.py" runs/elastic elastic_298K
 echo "1 passed, 0 failed"

@@ -6,6 +6,9 @@ shift
 PBMS="$ROOT/pbms"
 PY=/usr/bin/python3
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# As ./pbms runs its jobs (mpi_env there), for the tests' own plain `mpirun lmp`.
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none PMIX_MCA_gds=hash
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 

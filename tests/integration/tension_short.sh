@@ -29,4 +29,6 @@ with h5py.File(f"{run}/pull/tension.h5md") as t:
     bad += not ok
 sys.exit(1 if bad else 0)
 PYEOF
+# The same wire, plain lmp on the input md_driver wrote: the same curve to 1e-9.
+"$PY" "$(dirname "$0")/tension_vs_lmp.py" runs/tension_short pull
 echo "1 passed, 0 failed"
