@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "material_points.hpp"
@@ -40,6 +41,11 @@ struct BoundaryConditions {
   std::vector<PointLoad> loads;
   std::vector<PointVelocity> point_velocities;
   Vec3 body_acceleration{0.0, 0.0, 0.0};  // gravity-like, Å/ps^2
+  // A force on each point (eV/Å), indexed like the points, mapped to the
+  // nodes with N as the other external forces are: the pair forces of the
+  // DPD particles of the DPD/MPM-grid model (s-3b). Empty: none. The
+  // caller keeps the forces alive over the step.
+  std::span<const Vec3> point_forces;
 };
 
 }  // namespace pbms::mpm

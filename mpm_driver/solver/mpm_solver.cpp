@@ -171,7 +171,7 @@ void MpmSolver::sum_shared(int first, int components) {
   }
 }
 
-// Body force plus the loads of the point's groups, eV/Å.
+// Body force, the loads of the point's groups and its own point force, eV/Å.
 Vec3 MpmSolver::external_force(const MaterialPoints& points, const BoundaryConditions& bc,
                                size_t p) const {
   Vec3 f{0.0, 0.0, 0.0};
@@ -181,6 +181,7 @@ Vec3 MpmSolver::external_force(const MaterialPoints& points, const BoundaryCondi
   for (const auto& load : bc.loads) {
     if (points.in_group(p, load.group_mask)) add_to(f, load.force_per_point);
   }
+  if (!bc.point_forces.empty()) add_to(f, bc.point_forces[p]);
   return f;
 }
 
@@ -198,7 +199,7 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   if (dual) S_.assign(sums_.size(), {0, 0, 0, 0, 0, 0});
   const double kv = opt_.units.stress_volume_to_energy;
   const bool body = dot(bc.body_acceleration, bc.body_acceleration) > 0.0;
-  const bool external = body || !bc.loads.empty();
+  const bool external = body || !bc.loads.empty() || !bc.point_forces.empty();
   const bool rigid = !bc.point_velocities.empty();
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
