@@ -17,13 +17,6 @@ double gap(double x, double lo, double hi) {
   return 0.0;
 }
 
-bool within(const Vec3& x, const SpaceBox& b, double reach) {
-  for (std::size_t a = 0; a < 3; ++a) {
-    if (gap(x[a], b.lo[a], b.hi[a]) > reach) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 PointGhostsAcrossPrograms::PointGhostsAcrossPrograms(MPI_Comm inter, Side side, const SpaceBox& box,
@@ -42,10 +35,8 @@ PointGhostsAcrossPrograms::PointGhostsAcrossPrograms(MPI_Comm inter, Side side, 
   }
   for (int r = 0; r < remote; ++r) {
     const bool sender = side == Side::kSender;
-    auto shifts = sender ? images(box, remote_boxes_[r]) : images(remote_boxes_[r], box);
-    if (shifts.empty()) continue;
-    peers_.push_back(r);
-    peer_images_.push_back(std::move(shifts));
+    const auto shifts = sender ? images(box, remote_boxes_[r]) : images(remote_boxes_[r], box);
+    if (!shifts.empty()) peers_.push_back(r);
   }
   send_buf_.resize(peers_.size());
 }
@@ -75,6 +66,31 @@ std::vector<std::array<int, 3>> PointGhostsAcrossPrograms::images(const SpaceBox
   return out;
 }
 
+// Every image of one point within reach of `to`, one pass over the axes
+// (at most two images per periodic axis qualify).
+void PointGhostsAcrossPrograms::append_images(std::int64_t id, const Vec3& x, const Vec3& v,
+                                              double mass, const SpaceBox& to,
+                                              std::vector<double>& buf) const {
+  std::array<std::array<double, 3>, 3> at{};  // per axis: the qualifying coordinates
+  std::array<int, 3> count{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double l = periodic_.length[a];
+    for (int s = -1; s <= 1; ++s) {
+      if (s != 0 && l <= 0.0) continue;
+      const double xa = x[a] + s * l;
+      if (gap(xa, to.lo[a], to.hi[a]) <= reach_) at[a][static_cast<std::size_t>(count[a]++)] = xa;
+    }
+    if (count[a] == 0) return;
+  }
+  for (int k = 0; k < count[2]; ++k)
+    for (int j = 0; j < count[1]; ++j)
+      for (int i = 0; i < count[0]; ++i) {
+        buf.insert(buf.end(), {static_cast<double>(id), at[0][static_cast<std::size_t>(i)],
+                               at[1][static_cast<std::size_t>(j)],
+                               at[2][static_cast<std::size_t>(k)], v[0], v[1], v[2], mass});
+      }
+}
+
 void PointGhostsAcrossPrograms::send(const std::vector<std::int64_t>& id,
                                      const std::vector<Vec3>& x, const std::vector<Vec3>& v,
                                      const std::vector<double>& mass) {
@@ -84,15 +100,7 @@ void PointGhostsAcrossPrograms::send(const std::vector<std::int64_t>& id,
     const SpaceBox& to = remote_boxes_[static_cast<std::size_t>(peers_[p])];
     auto& buf = send_buf_[p];
     buf.clear();
-    for (const auto& s : peer_images_[p]) {
-      for (std::size_t i = 0; i < id.size(); ++i) {
-        Vec3 xi = x[i];
-        for (std::size_t a = 0; a < 3; ++a) xi[a] += s[a] * periodic_.length[a];
-        if (!within(xi, to, reach_)) continue;
-        buf.insert(buf.end(), {static_cast<double>(id[i]), xi[0], xi[1], xi[2], v[i][0], v[i][1],
-                               v[i][2], mass[i]});
-      }
-    }
+    for (std::size_t i = 0; i < id.size(); ++i) append_images(id[i], x[i], v[i], mass[i], to, buf);
     mpi::check(MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peers_[p], kGhostTag,
                          inter_, &requests_[p]),
                "MPI_Isend (ghosts across programs)");

@@ -64,6 +64,8 @@ class PointGhostsAcrossPrograms {
   // of `to`.
   [[nodiscard]] std::vector<std::array<int, 3>> images(const SpaceBox& from,
                                                        const SpaceBox& to) const;
+  void append_images(std::int64_t id, const Vec3& x, const Vec3& v, double mass, const SpaceBox& to,
+                     std::vector<double>& buf) const;
 
   MPI_Comm inter_;
   Side side_;
@@ -71,7 +73,6 @@ class PointGhostsAcrossPrograms {
   PeriodicLengths periodic_;
   std::vector<SpaceBox> remote_boxes_;
   std::vector<int> peers_;
-  std::vector<std::vector<std::array<int, 3>>> peer_images_;  // per peer
   std::vector<std::vector<double>> send_buf_;
   std::vector<MPI_Request> requests_;
   std::vector<double> recv_buf_;
