@@ -357,6 +357,8 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
   wf.source_file = path;
   wf.resolved = resolved;
   wf.run_name = resolved["run"]["name"].as<std::string>();
+  wf.run_name_line = root["run"]["name"].Mark().line + 1;
+  wf.run_name_column = root["run"]["name"].Mark().column + 1;
   wf.output_dir = resolved["run"]["output"].as<std::string>();
   wf.seed = resolved["run"]["seed"].as<uint64_t>();
   wf.materials = resolved["materials"];
