@@ -43,7 +43,8 @@ YAML
 wall() { /usr/bin/python3 -c "import yaml; s = yaml.safe_load(open('runs/bench_fit/summary.yaml'))['stages']['fit']; print(s['wall_s'], s['results']['evaluations']['value'])"; }
 "$ROOT/pbms" run fit.yaml --ranks dpd=1 > one.txt 2>&1 || { cat one.txt; exit 1; }
 one=$(wall)
-"$ROOT/pbms" run fit.yaml --ranks dpd=2 > two.txt 2>&1 || { cat two.txt; exit 1; }
+# The same run name again, on two ranks: replacing the one-rank run is intended.
+"$ROOT/pbms" run fit.yaml --ranks dpd=2 --overwrite > two.txt 2>&1 || { cat two.txt; exit 1; }
 two=$(wall)
 /usr/bin/python3 - $one $two <<'PY'
 import sys

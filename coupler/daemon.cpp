@@ -150,6 +150,11 @@ class Daemon {
       for (auto& p : check_capabilities(loaded.workflow->stages, hellos, sizes)) {
         problems.push_back(std::move(p));
       }
+      // The launcher checked this too; a daemon started by hand, or a run of
+      // the same name that began meanwhile, must not cost an earlier result.
+      if (auto refusal = existing_run_refusal(*loaded.workflow, existing()); !refusal.empty()) {
+        problems.push_back(std::move(refusal));
+      }
     }
     if (!problems.empty()) {
       for (const auto& p : problems) std::cerr << "pbms: refused: " << p << "\n";
@@ -162,7 +167,7 @@ class Daemon {
     for (const auto& l : scheduler_.links()) {
       layout.push_back({l.hello.program, l.app.size, l.app.first_world_rank});
     }
-    record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line, opt_.resume);
+    record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line, existing(), opt_.run_id);
     for (const auto& l : scheduler_.links()) record_->set_software(l.hello.software);
     setup_log();
     scheduler_.welcome(true, "");
@@ -187,6 +192,11 @@ class Daemon {
   }
 
  private:
+  [[nodiscard]] ExistingRun existing() const {
+    if (opt_.resume) return ExistingRun::kResume;
+    return opt_.overwrite ? ExistingRun::kOverwrite : ExistingRun::kRefuse;
+  }
+
   void setup_log() {
     auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(record_->log_path().string());
     file->set_pattern("[%Y-%m-%d %H:%M:%S] %v");

@@ -14,8 +14,10 @@ struct DaemonOptions {
   std::filesystem::path drivers_dir;
   std::vector<std::string> rank_overrides;
   bool terminal = false;
-  bool resume = false;  // keep the run directory; stages pick up what they recorded
+  bool resume = false;     // keep the run directory; stages pick up what they recorded
+  bool overwrite = false;  // replace an earlier run of the same name (else refuse)
   std::string command_line;
+  std::string run_id;  // recorded in the manifest, for `coupler postmortem`
 };
 
 // Called between MPI_Init and MPI_Finalize. Returns the exit code.

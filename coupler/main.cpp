@@ -14,6 +14,7 @@
 #include "pbms/mpi/comm.hpp"
 #include "postmortem.hpp"
 #include "reference_doc.hpp"
+#include "run_record.hpp"
 
 namespace {
 
@@ -56,9 +57,13 @@ int main(int argc, char** argv) {
   validate->add_option("config", config, "Workflow YAML")->required();
   validate->add_option("--ranks", ranks, "Rank override PROGRAM=N");
 
-  auto* plan = app.add_subcommand("plan", "Validate, then print the run directory and programs");
+  bool resume = false, overwrite = false;
+  auto* plan = app.add_subcommand(
+      "plan", "Validate, check the run directory, then print it and the programs");
   plan->add_option("config", config, "Workflow YAML")->required();
   plan->add_option("--ranks", ranks, "Rank override PROGRAM=N");
+  plan->add_flag("--resume", resume, "The run will keep its run directory");
+  plan->add_flag("--overwrite", overwrite, "The run will replace an earlier run of its name");
 
   bool terminal = false;
   std::string command_line;
@@ -66,9 +71,12 @@ int main(int argc, char** argv) {
   daemon->add_option("config", config, "Workflow YAML")->required();
   daemon->add_option("--ranks", ranks, "Rank override PROGRAM=N");
   daemon->add_flag("--tty", terminal, "Refresh progress lines in place");
-  bool resume = false;
   daemon->add_flag("--resume", resume, "Keep the run directory; stages resume what they recorded");
+  daemon->add_flag("--overwrite", overwrite,
+                   "Delete an earlier run of the same name (else the daemon refuses to start)");
   daemon->add_option("--command", command_line, "Command line to record in the manifest");
+  std::string run_id;
+  daemon->add_option("--run-id", run_id, "Identity of this job, recorded in the manifest");
 
   std::string run_dir, mpirun_log;
   int exit_code = 0;
@@ -76,6 +84,8 @@ int main(int argc, char** argv) {
   pm->add_option("run_dir", run_dir)->required();
   pm->add_option("--exit-code", exit_code)->required();
   pm->add_option("--mpirun-log", mpirun_log)->required();
+  pm->add_option("--run-id", run_id,
+                 "The job's identity: a run directory of another job is left as it is");
 
   auto* reference = app.add_subcommand("reference", "Print the config reference (Markdown)");
   auto* describe = app.add_subcommand("describe", "Print what every driver declares (YAML)");
@@ -83,7 +93,12 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    if (*pm) return pbms::coupler::postmortem(run_dir, exit_code, mpirun_log);
+    if (*pm) return pbms::coupler::postmortem(run_dir, exit_code, mpirun_log, run_id);
+    if ((*plan || *daemon) && resume && overwrite) {
+      std::cerr << "pbms: error: --resume keeps the run directory and --overwrite replaces it: "
+                   "give one of them\n";
+      return 1;
+    }
     const auto drivers = pbms::coupler::discover_drivers(drivers_dir);
     if (*reference) {
       std::cout << pbms::coupler::config_reference_markdown(drivers);
@@ -107,13 +122,21 @@ int main(int argc, char** argv) {
     if (*plan) {
       auto wf = load_or_report(config, drivers, ranks);
       if (!wf) return 1;
+      const auto existing = resume      ? pbms::coupler::ExistingRun::kResume
+                            : overwrite ? pbms::coupler::ExistingRun::kOverwrite
+                                        : pbms::coupler::ExistingRun::kRefuse;
+      if (auto refusal = pbms::coupler::existing_run_refusal(*wf, existing); !refusal.empty()) {
+        std::cerr << refusal << "\n";
+        return 1;
+      }
       std::cout << "run_dir " << std::filesystem::absolute(wf->run_dir()).string() << "\n";
       for (const auto& p : wf->programs()) std::cout << "app " << p << " " << wf->ranks[p] << "\n";
       return 0;
     }
     if (*daemon) {
       pbms::mpi::Environment env(argc, argv);
-      pbms::coupler::DaemonOptions opt{config, drivers_dir, ranks, terminal, resume, command_line};
+      pbms::coupler::DaemonOptions opt{config, drivers_dir, ranks,        terminal,
+                                       resume, overwrite,   command_line, run_id};
       try {
         return pbms::coupler::run_daemon(opt);
       } catch (const std::exception& e) {

@@ -59,15 +59,31 @@ DeadRank parse_mpirun_output(const std::string& text) {
 }
 
 int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
-               const std::filesystem::path& mpirun_log) {
+               const std::filesystem::path& mpirun_log, const std::string& run_id) {
   const std::string output = read_file(mpirun_log);
+  const auto manifest_path = run_dir / "manifest.yaml";
+  bool ours = true;
+  if (!run_id.empty()) {
+    try {
+      ours = std::filesystem::exists(manifest_path) &&
+             YAML::LoadFile(manifest_path.string())["run_id"].as<std::string>("") == run_id;
+    } catch (const YAML::Exception&) {
+      ours = false;
+    }
+  }
   std::error_code ec;
-  if (std::filesystem::is_directory(run_dir)) {
+  if (ours && std::filesystem::is_directory(run_dir)) {
     std::filesystem::copy_file(mpirun_log, run_dir / "mpirun.log",
                                std::filesystem::copy_options::overwrite_existing, ec);
   }
-  const auto manifest_path = run_dir / "manifest.yaml";
-  if (!std::filesystem::exists(manifest_path)) {
+  if (!ours && std::filesystem::exists(manifest_path)) {
+    std::cerr << fmt::format(
+        "pbms: the job ended (exit code {}) before this run wrote anything; {} holds another "
+        "run and was left as it is; see the messages above\n",
+        mpirun_exit_code, run_dir.string());
+    return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
+  }
+  if (!ours || !std::filesystem::exists(manifest_path)) {
     std::cerr << fmt::format(
         "pbms: the job ended (exit code {}) before the run directory was "
         "set up; see the messages above\n",

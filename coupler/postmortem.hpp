@@ -18,8 +18,10 @@ struct DeadRank {
 // Parses Open MPI's report of the first process that ended the job.
 DeadRank parse_mpirun_output(const std::string& text);
 
-// Returns the exit code the launcher should use.
+// Returns the exit code the launcher should use. With a `run_id`, a run
+// directory whose manifest is not that job's (an earlier run the daemon
+// refused to replace) is left exactly as it is.
 int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
-               const std::filesystem::path& mpirun_log);
+               const std::filesystem::path& mpirun_log, const std::string& run_id = {});
 
 }  // namespace pbms::coupler

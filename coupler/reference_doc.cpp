@@ -34,6 +34,10 @@ void table(std::string& out, const std::vector<const config::Param*>& fields) {
     if (p->max) doc += fmt::format(" Must be ≤ {}.", *p->max);
     if (p->allow_reference) doc += " May be `{from: <stage>.<output>}`.";
     if (p->names_material) doc += " Names an entry of `materials`.";
+    if (!p->stage_kinds.empty()) {
+      doc += fmt::format(" Names an earlier stage of kind {}.", fmt::join(p->stage_kinds, " or "));
+    }
+    if (p->one_key) doc += " Takes exactly one of its keys.";
     if (p->kind == config::ParamKind::kReal || p->kind == config::ParamKind::kRealList) {
       if (p->dimension != units::Dimension::kNone) {
         doc += fmt::format(" Accepts units: {}.", units::accepted_symbols(p->dimension));
@@ -62,7 +66,10 @@ std::string config_reference_markdown(const std::vector<config::DriverDescriptio
       "Regenerate it with `./pbms reference > docs/config-reference.md`.\n\n"
       "Quantities are in LAMMPS `metal` units (Å, ps, eV, g/mol, bar, K). A real-valued key\n"
       "also takes a string with a unit, e.g. `pressures: [0, \"5 GPa\"]` or `timestep: 2 fs`.\n"
-      "Unknown keys are errors.\n\n";
+      "Unknown keys, a key given twice, numbers that are not finite (`.nan`, `.inf`) and\n"
+      "integers beyond 2147483647 (unless a key states its own bound) are errors. A workflow\n"
+      "(and a potential file) is one YAML document of at most 1 MiB, with lines of at most\n"
+      "64 KiB; anchors and aliases are fine, recursive ones are not.\n\n";
   for (const auto& top : schema.fields) {
     if (top.name == "stages" || top.name == "materials") continue;
     out += fmt::format("## `{}`\n\n{}.\n\n", top.name, top.doc);

@@ -47,14 +47,54 @@ std::string now_iso8601() {
   return buf;
 }
 
+std::string existing_run_refusal(const config::Workflow& wf, ExistingRun existing) {
+  if (existing != ExistingRun::kRefuse) return {};
+  const auto dir = std::filesystem::absolute(wf.run_dir()).lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec) || std::filesystem::is_empty(dir, ec)) return {};
+  std::vector<std::string> resumable;
+  for (const auto& s : wf.stages) {
+    if (s.program == config::kCouplerProgram) resumable.push_back(fmt::format("'{}'", s.name));
+  }
+  ConfigError e;
+  e.file = wf.source_file;
+  e.line = wf.run_name_line;
+  e.column = wf.run_name_column;
+  e.key_path = "run.name";
+  e.message = fmt::format(
+      "the run directory '{}' holds an earlier run (run.name '{}'), which this run would "
+      "replace; it was left as it is",
+      dir.string(), wf.run_name);
+  std::string out = e.format();
+  out += fmt::format("\n  to replace it:   ./pbms run {} --overwrite", wf.source_file);
+  out += fmt::format("\n  to keep both:    give this run a new run.name in {}", wf.source_file);
+  if (resumable.empty()) {
+    out +=
+        "\n  (--resume does not apply: no stage of this workflow resumes; only "
+        "fit_dpd_potential stages do)";
+  } else {
+    out += fmt::format(
+        "\n  to continue it:  ./pbms run {} --resume (stage{} {} replay{} what {} "
+        "recorded there)",
+        wf.source_file, resumable.size() == 1 ? "" : "s", fmt::join(resumable, ", "),
+        resumable.size() == 1 ? "s" : "", resumable.size() == 1 ? "it" : "they");
+  }
+  return out;
+}
+
 RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout>& layout,
-                     const std::string& command_line, bool resume)
+                     const std::string& command_line, ExistingRun existing,
+                     const std::string& run_id)
     : dir_(std::filesystem::absolute(wf.run_dir())) {
-  // A rerun replaces the previous run of the same name, as LAMMPS replaces
-  // its log: the run directory always describes exactly one run. A resumed
-  // run keeps it: its stages pick up what they recorded there.
-  if (!resume) std::filesystem::remove_all(dir_);
-  std::filesystem::create_directories(dir_);
+  // A run directory describes exactly one run, and nothing in it is deleted
+  // unless the user asked (--overwrite). A resumed run keeps it: its stages
+  // pick up what they recorded there.
+  if (existing == ExistingRun::kOverwrite) std::filesystem::remove_all(dir_);
+  std::filesystem::create_directories(dir_.parent_path());
+  const bool created = std::filesystem::create_directory(dir_);
+  if (!created && existing == ExistingRun::kRefuse && !std::filesystem::is_empty(dir_)) {
+    throw Error(existing_run_refusal(wf, existing));
+  }
   write_yaml_atomic(dir_ / "config.yaml", wf.resolved,
                     fmt::format("resolved from {}: defaults filled in, quantities in metal units",
                                 wf.source_file));
@@ -74,6 +114,7 @@ RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout
   manifest_["protocol_version"] = static_cast<int>(protocol::kProtocolVersion);
   manifest_["config"] = std::filesystem::absolute(wf.source_file).string();
   manifest_["command"] = command_line;
+  if (!run_id.empty()) manifest_["run_id"] = run_id;
   manifest_["host"] = std::string(host);
   manifest_["started"] = now_iso8601();
   manifest_["status"] = "running";

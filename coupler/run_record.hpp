@@ -22,12 +22,29 @@ struct ProgramLayout {
   int first_world_rank = 0;
 };
 
+// What a run does with a run directory that holds an earlier run.
+enum class ExistingRun {
+  kRefuse,     // the default: stop, change nothing
+  kOverwrite,  // --overwrite: delete it and start afresh
+  kResume,     // --resume: keep it; stages pick up what they recorded there
+};
+
+// Empty when `wf` may start with `existing`; otherwise the refusal to print:
+// a file:line:col error at run.name naming the run directory, then one
+// line per way out (--overwrite, a new run.name, --resume where a stage
+// resumes). A directory that is missing or empty holds no earlier run.
+std::string existing_run_refusal(const config::Workflow& wf, ExistingRun existing);
+
 class RunRecord {
  public:
-  // Clears and creates the run directory (keeps it with `resume`); writes
-  // config.yaml and a manifest with status "running".
+  // Creates the run directory and writes config.yaml and a manifest with
+  // status "running". An earlier run there is deleted only with kOverwrite,
+  // kept with kResume, and with kRefuse throws pbms::Error (the directory is
+  // claimed atomically, so two runs of one name cannot both start).
+  // `run_id` marks the manifest as this job's for `coupler postmortem`.
   RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout>& layout,
-            const std::string& command_line, bool resume = false);
+            const std::string& command_line, ExistingRun existing = ExistingRun::kRefuse,
+            const std::string& run_id = {});
 
   [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }
   [[nodiscard]] std::filesystem::path log_path() const { return dir_ / "log.txt"; }

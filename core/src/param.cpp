@@ -172,6 +172,8 @@ YAML::Node to_yaml(const Param& p) {
   if (p.allow_reference) n["referable"] = true;
   if (p.names_material) n["material"] = true;
   if (p.allow_auto) n["or_auto"] = true;
+  if (!p.stage_kinds.empty()) n["stage_kinds"] = p.stage_kinds;
+  if (p.one_key) n["one_key"] = true;
   for (const auto& f : p.fields) n["fields"].push_back(to_yaml(f));
   if (!p.discriminator.empty()) n["discriminator"] = p.discriminator;
   for (const auto& [v, fs] : p.variants) {
@@ -214,6 +216,8 @@ Param param_from_yaml(const YAML::Node& n) {
   p.allow_reference = n["referable"] && n["referable"].as<bool>();
   p.names_material = n["material"] && n["material"].as<bool>();
   p.allow_auto = n["or_auto"] && n["or_auto"].as<bool>();
+  if (n["stage_kinds"]) p.stage_kinds = n["stage_kinds"].as<std::vector<std::string>>();
+  p.one_key = n["one_key"] && n["one_key"].as<bool>();
   for (const auto& f : n["fields"]) p.fields.push_back(param_from_yaml(f));
   if (n["discriminator"]) p.discriminator = n["discriminator"].as<std::string>();
   for (const auto& vn : n["variants"]) {

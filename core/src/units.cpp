@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,52 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// What a dimension measures, for messages.
+std::string_view dimension_name(Dimension d) {
+  switch (d) {
+    case Dimension::kNone:
+      return "a plain number";
+    case Dimension::kPressure:
+      return "a pressure";
+    case Dimension::kLength:
+      return "a length";
+    case Dimension::kTime:
+      return "a time";
+    case Dimension::kTemperature:
+      return "a temperature";
+    case Dimension::kVelocity:
+      return "a velocity";
+    case Dimension::kEnergy:
+      return "an energy";
+    case Dimension::kMass:
+      return "a molar mass";
+    case Dimension::kRate:
+      return "a rate";
+    case Dimension::kDensity:
+      return "a density";
+    case Dimension::kAcceleration:
+      return "an acceleration";
+    case Dimension::kForce:
+      return "a force";
+  }
+  return "a quantity";
+}
+
+bool starts_with_nocase(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (size_t i = 0; i < prefix.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(s[i])) != prefix[i]) return false;
+  }
+  return true;
+}
+
+// The user's text in a message, cut if it is long.
+std::string quoted(std::string_view text) {
+  constexpr size_t kShown = 60;
+  return text.size() <= kShown ? fmt::format("'{}'", text)
+                               : fmt::format("'{}...'", text.substr(0, kShown));
+}
+
 }  // namespace
 
 std::string_view canonical_symbol(Dimension d) {
@@ -104,23 +151,44 @@ std::string accepted_symbols(Dimension d) {
 
 double parse_quantity(std::string_view text, Dimension d) {
   const std::string_view s = trim(text);
+  // YAML's .nan and .inf, and the nan, inf and infinity that from_chars reads.
+  std::string_view magnitude = s;
+  if (!magnitude.empty() && (magnitude[0] == '+' || magnitude[0] == '-')) {
+    magnitude.remove_prefix(1);
+  }
+  if (starts_with_nocase(magnitude, ".nan") || starts_with_nocase(magnitude, ".inf") ||
+      starts_with_nocase(magnitude, "nan") || starts_with_nocase(magnitude, "inf")) {
+    throw Error(fmt::format("{} is not a finite number", quoted(text)));
+  }
   double value = 0.0;
   const auto* begin = s.data();
   const auto* end = s.data() + s.size();
   auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec != std::errc() || ptr == begin) {
-    throw Error(fmt::format("'{}' is not a number (with an optional unit)", text));
+  if (ec == std::errc::result_out_of_range) {
+    throw Error(fmt::format("{} is too large or too small for a number", quoted(text)));
   }
+  if (ec != std::errc() || ptr == begin) {
+    throw Error(fmt::format("{} is not a number (with an optional unit)", quoted(text)));
+  }
+  if (!std::isfinite(value)) throw Error(fmt::format("{} is not a finite number", quoted(text)));
   const std::string_view unit = trim(std::string_view(ptr, static_cast<size_t>(end - ptr)));
   if (unit.empty()) return value;
   if (d == Dimension::kNone) {
-    throw Error(fmt::format("'{}' must be a plain number without a unit", text));
+    throw Error(fmt::format("{} must be a plain number without a unit", quoted(text)));
   }
   for (const auto& u : kUnits) {
     if (u.dim == d && u.symbol == unit) return value * u.to_canonical;
   }
-  throw Error(fmt::format("unknown unit '{}' in '{}': accepted units are {}", unit, text,
-                          accepted_symbols(d)));
+  for (const auto& u : kUnits) {
+    if (u.symbol == unit) {
+      throw Error(fmt::format(
+          "'{}' in {} measures {}, but this key takes {}: accepted units "
+          "are {}",
+          unit, quoted(text), dimension_name(u.dim), dimension_name(d), accepted_symbols(d)));
+    }
+  }
+  throw Error(fmt::format("unknown unit {} in {}: accepted units are {}", quoted(unit),
+                          quoted(text), accepted_symbols(d)));
 }
 
 double to_metal(double value, std::string_view unit) {

@@ -1,9 +1,16 @@
 #include "pbms/config/validator.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -24,6 +31,32 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   return prev[b.size()];
 }
 
+// [A-Za-z_][A-Za-z0-9_.-]*, without std::regex: libstdc++'s regex matcher
+// recurses once per character, and a name of a few megabytes overflows the
+// stack (a segmentation fault instead of an error).
+bool is_name(const std::string& s) {
+  if (s.empty()) return false;
+  const auto c0 = static_cast<unsigned char>(s[0]);
+  if (!(std::isalpha(c0) || c0 == '_')) return false;
+  return std::all_of(s.begin() + 1, s.end(), [](char ch) {
+    const auto c = static_cast<unsigned char>(ch);
+    return std::isalnum(c) || c == '_' || c == '.' || c == '-';
+  });
+}
+
+// The first part of `p` (itself included) that exists but is not a
+// directory, so that nothing below it can exist (ENOTDIR); empty if none.
+std::filesystem::path blocking_file(const std::filesystem::path& p) {
+  std::filesystem::path prefix;
+  for (const auto& part : p) {
+    prefix /= part;
+    struct stat st {};
+    if (::stat(prefix.c_str(), &st) != 0) return {};
+    if (!S_ISDIR(st.st_mode)) return prefix;
+  }
+  return {};
+}
+
 std::string shown(const YAML::Node& n) {
   if (n.IsScalar()) {
     const auto& s = n.Scalar();
@@ -41,6 +74,47 @@ bool is_reference(const YAML::Node& n) {
 }
 
 }  // namespace
+
+std::string file_problem(const std::filesystem::path& file) {
+  const auto f = std::filesystem::absolute(file).lexically_normal();
+  const auto blocked = blocking_file(f.parent_path());
+  if (!blocked.empty()) {
+    return fmt::format("cannot exist: '{}' is a file, not a directory", blocked.string());
+  }
+  struct stat st {};
+  if (::stat(f.c_str(), &st) != 0) {
+    return errno == ENOENT ? std::string("does not exist")
+                           : fmt::format("cannot be reached: {}", std::strerror(errno));
+  }
+  if (S_ISDIR(st.st_mode)) return "is a directory, not a file";
+  if (!S_ISREG(st.st_mode)) return "is not a regular file";
+  if (!std::ifstream(f).good()) return fmt::format("cannot be read: {}", std::strerror(errno));
+  return {};
+}
+
+std::string directory_problem(const std::filesystem::path& dir) {
+  const auto d = std::filesystem::absolute(dir).lexically_normal();
+  const auto blocked = blocking_file(d);
+  if (!blocked.empty()) {
+    return blocked == d ? fmt::format("'{}' exists and is not a directory", d.string())
+                        : fmt::format("'{}' is a file, not a directory", blocked.string());
+  }
+  // The deepest part that exists must let us create (or write) inside it.
+  auto existing = d;
+  std::error_code ec;
+  while (!std::filesystem::exists(existing, ec) && existing.has_parent_path() &&
+         existing != existing.parent_path()) {
+    existing = existing.parent_path();
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    return fmt::format("'{}' cannot be written: {}", existing.string(), std::strerror(errno));
+  }
+  return {};
+}
+
+std::string clipped(const std::string& s, size_t n) {
+  return s.size() <= n ? s : s.substr(0, n) + "...";
+}
 
 std::string join_path(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
@@ -112,7 +186,17 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
       try {
         v = node.as<long long>();
       } catch (const YAML::Exception&) {
-        error(node, path, fmt::format("expected an integer, got '{}'", s));
+        error(node, path, fmt::format("expected an integer, got '{}'", clipped(s)));
+        return {};
+      }
+      // Unless a key says otherwise, integers are counts that drivers hold
+      // in an int: a larger value would be cut, not refused, at run time.
+      if (!p.max && v > INT_MAX) {
+        error(node, path, fmt::format("value {} is too large: at most {}", v, INT_MAX));
+        return {};
+      }
+      if (!p.min && v < INT_MIN) {
+        error(node, path, fmt::format("value {} is too small: at least {}", v, INT_MIN));
         return {};
       }
       if (!check_range(p, static_cast<double>(v), node, path)) return {};
@@ -134,19 +218,18 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
       try {
         return YAML::Node(node.as<bool>());
       } catch (const YAML::Exception&) {
-        error(node, path, fmt::format("expected true or false, got '{}'", s));
+        error(node, path, fmt::format("expected true or false, got '{}'", clipped(s)));
         return {};
       }
     }
     case ParamKind::kString:
       return YAML::Node(s);
     case ParamKind::kName: {
-      static const std::regex re("[A-Za-z_][A-Za-z0-9_.-]*");
-      if (!std::regex_match(s, re)) {
+      if (!is_name(s)) {
         error(node, path,
               fmt::format("'{}' is not a valid name: use letters, digits, '_', '-' and '.', "
                           "starting with a letter or '_'",
-                          s));
+                          clipped(s)));
         return {};
       }
       return YAML::Node(s);
@@ -154,13 +237,8 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
     case ParamKind::kFile: {
       std::filesystem::path f(s);
       if (f.is_relative()) f = std::filesystem::path(file_).parent_path() / f;
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(f, ec)) {
-        error(node, path, fmt::format("file '{}' does not exist", f.string()));
-        return {};
-      }
-      if (!std::ifstream(f).good()) {
-        error(node, path, fmt::format("file '{}' cannot be read", f.string()));
+      if (const std::string problem = file_problem(f); !problem.empty()) {
+        error(node, path, fmt::format("file '{}' {}", clipped(f.string(), 300), problem));
         return {};
       }
       return YAML::Node(std::filesystem::absolute(f).lexically_normal().string());
@@ -174,7 +252,7 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
     case ParamKind::kChoice:
       if (std::find(p.choices.begin(), p.choices.end(), s) == p.choices.end()) {
         error(node, path,
-              fmt::format("'{}' is not one of: {}{}", s, fmt::join(p.choices, ", "),
+              fmt::format("'{}' is not one of: {}{}", clipped(s), fmt::join(p.choices, ", "),
                           suggest(s, p.choices)));
         return {};
       }
@@ -185,16 +263,34 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
   return {};
 }
 
+void Validator::check_unique_keys(const YAML::Node& node, const std::string& path) {
+  // yaml-cpp keeps both entries of a repeated key and looks up the first:
+  // the second would be ignored without a word.
+  std::map<std::string, int> first_line;
+  for (const auto& kv : node) {
+    if (!kv.first.IsScalar()) continue;
+    const auto key = kv.first.Scalar();
+    const int line = kv.first.Mark().line + 1;
+    const auto [it, fresh] = first_line.emplace(key, line);
+    if (!fresh) {
+      error(kv.first, join_path(path, clipped(key)),
+            fmt::format("the key '{}' is given twice in this map (first on line {}); keep one",
+                        clipped(key), it->second));
+    }
+  }
+}
+
 YAML::Node Validator::check_fields(const std::vector<const Param*>& fields, const YAML::Node& node,
                                    const std::string& path) {
   YAML::Node out(YAML::NodeType::Map);
   std::vector<std::string> names;
   for (const auto* f : fields) names.push_back(f->name);
+  check_unique_keys(node, path);
   for (const auto& kv : node) {
     const auto key = kv.first.Scalar();
     if (std::find(names.begin(), names.end(), key) == names.end()) {
-      error(kv.first, join_path(path, key),
-            fmt::format("unknown key '{}'{}", key, suggest(key, names)));
+      error(kv.first, join_path(path, clipped(key)),
+            fmt::format("unknown key '{}'{}", clipped(key), suggest(key, names)));
     }
   }
   for (const auto* f : fields) {
@@ -250,6 +346,14 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
         if (d.IsDefined() && d.IsScalar()) variant = d.Scalar();
       }
       std::vector<const Param*> fields = p.fields_for(variant);
+      if (p.one_key && node.size() != 1) {
+        std::vector<std::string> names;
+        for (const auto* f : fields) names.push_back(f->name);
+        error(
+            node, path,
+            fmt::format("takes exactly one of {}; {} given", fmt::join(names, ", "), node.size()));
+        return {};
+      }
       if (!p.discriminator.empty() && !p.variants.count(variant)) {
         // Only validate the common keys; the unknown variant is reported by the
         // discriminator's choice check. Extra keys would only add noise.
@@ -267,12 +371,13 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
         return {};
       }
       YAML::Node out(YAML::NodeType::Map);
-      static const std::regex re("[A-Za-z_][A-Za-z0-9_.-]*");
+      check_unique_keys(node, path);
       for (const auto& kv : node) {
         const auto key = kv.first.Scalar();
         const auto child_path = join_path(path, key);
-        if (!std::regex_match(key, re)) {
-          error(kv.first, child_path, fmt::format("'{}' is not a valid name", key));
+        if (!is_name(key)) {
+          error(kv.first, join_path(path, clipped(key)),
+                fmt::format("'{}' is not a valid name", clipped(key)));
           continue;
         }
         out[key] = check(p.fields[0], kv.second, child_path);
@@ -314,6 +419,16 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
         r.type = Reference::Target::kMaterial;
         r.key_path = path;
         r.target = node.Scalar();
+        r.line = node.Mark().line + 1;
+        r.column = node.Mark().column + 1;
+        references_.push_back(r);
+      }
+      if (!p.stage_kinds.empty() && out.IsDefined() && !out.IsNull()) {
+        Reference r;
+        r.type = Reference::Target::kStage;
+        r.key_path = path;
+        r.target = node.Scalar();
+        r.kinds = p.stage_kinds;
         r.line = node.Mark().line + 1;
         r.column = node.Mark().column + 1;
         references_.push_back(r);

@@ -1,13 +1,12 @@
 #include "pbms/config/workflow.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "pbms/config/validator.hpp"
+#include "pbms/config/yaml_source.hpp"
 
 namespace pbms::config {
 namespace {
@@ -26,49 +25,6 @@ const StageKindSpec* find_kind(const std::vector<DriverDescription>& drivers,
     if (const auto* s = d.stage_kind(kind)) return s;
   }
   return nullptr;
-}
-
-// Reports the first byte that cannot be part of a YAML text file: NUL, other
-// control characters, or malformed UTF-8. Returns false if one was found.
-bool check_text(const std::string& text, Validator& v) {
-  int line = 0, col = 0;
-  size_t i = 0;
-  while (i < text.size()) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    size_t len = 1;
-    bool bad = false;
-    if (c < 0x20 && c != '\n' && c != '\r' && c != '\t') {
-      bad = true;
-    } else if (c >= 0x80) {
-      if ((c & 0xE0) == 0xC0)
-        len = 2;
-      else if ((c & 0xF0) == 0xE0)
-        len = 3;
-      else if ((c & 0xF8) == 0xF0)
-        len = 4;
-      else
-        bad = true;
-      for (size_t k = 1; !bad && k < len; ++k) {
-        bad = i + k >= text.size() || (static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80;
-      }
-    }
-    if (bad) {
-      YAML::Mark m;
-      m.line = line;
-      m.column = col;
-      v.error_at(m, "",
-                 fmt::format("not a text file: byte 0x{:02x} cannot appear in a YAML workflow", c));
-      return false;
-    }
-    if (c == '\n') {
-      ++line;
-      col = 0;
-    } else {
-      ++col;
-    }
-    i += len;
-  }
-  return true;
 }
 
 std::string_view shape_phrase(OutputSpec::Shape shape) {
@@ -148,7 +104,8 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
                Param::path("output", "Directory that holds run directories").def("runs"),
                Param::integer("seed", "Seed of every random number in the run")
                    .def(12345)
-                   .at_least(0)},
+                   .at_least(0)
+                   .at_most(1e18)},
               "Run identity")
               .require(),
           Param::map("launch", launch_fields, "MPI ranks per driver program")
@@ -166,33 +123,18 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
   top.line = 0;
   top.column = 0;
 
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    result.errors.push_back({path, 0, 0, "", "cannot open the workflow file"});
+  if (!std::filesystem::exists(path)) {
+    result.errors.push_back({path, 0, 0, "", "cannot open the workflow file: it does not exist"});
     return result;
   }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
-    v.error_at(top, "", "the file is empty: a workflow needs 'run' and 'stages'");
+  std::optional<YAML::Node> loaded = load_yaml_source(path, v, "a workflow");
+  if (!loaded) {
     result.errors = v.errors();
     return result;
   }
-  if (!check_text(text, v)) {
-    result.errors = v.errors();
-    return result;
-  }
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    v.error_at(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
-    result.errors = v.errors();
-    return result;
-  }
+  YAML::Node root = *loaded;  // not const: a const lookup of a missing key throws
   if (!root.IsMap()) {
-    v.error_at(root.IsDefined() ? root.Mark() : top, "",
+    v.error_at(root.Mark().is_null() ? top : root.Mark(), "",
                "expected a map with keys run, launch, materials, stages");
     result.errors = v.errors();
     return result;
@@ -200,6 +142,20 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
 
   const Param schema = workflow_schema(drivers);
   YAML::Node resolved = v.check(schema, root, "");
+
+  // The run directory must be possible: nothing in the way (a file where a
+  // directory should be) and a parent it can be created in.
+  const YAML::Node run_out = resolved["run"];
+  if (run_out.IsMap() && run_out["name"] && run_out["output"]) {
+    const std::filesystem::path dir =
+        std::filesystem::path(run_out["output"].Scalar()) / run_out["name"].Scalar();
+    if (const std::string problem = directory_problem(dir); !problem.empty()) {
+      const YAML::Node at = root["run"]["output"] ? root["run"]["output"] : root["run"];
+      v.error(at, "run.output",
+              fmt::format("the run directory '{}' cannot be created: {}",
+                          clipped(dir.string(), 300), problem));
+    }
+  }
 
   // Stage names and kinds.
   std::vector<std::string> stage_names;
@@ -225,7 +181,7 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
           v.error(st["kind"], sp + ".kind",
                   fmt::format("unknown stage kind '{}': no installed driver declares it "
                               "(declared: {}){}",
-                              kind, fmt::join(kinds, ", "), suggest(kind, kinds)));
+                              clipped(kind), fmt::join(kinds, ", "), suggest(kind, kinds)));
         }
       }
       stage_names.push_back(name);
@@ -237,6 +193,26 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
   // must exist and suit the stage.
   const YAML::Node materials = root["materials"];
   const std::map<std::string, int> first_use = first_stage_using(v.references());
+  // The index of stage `name`, which must run before stage `idx` (-1: no
+  // stage); -1 after reporting that it does not.
+  auto earlier_stage = [&](const std::string& name, int idx, const YAML::Mark& m,
+                           const std::string& key_path, std::string_view use) {
+    const auto it = std::find(stage_names.begin(), stage_names.end(), name);
+    if (it == stage_names.end()) {
+      v.error_at(
+          m, key_path,
+          fmt::format("no stage is named '{}'{}", clipped(name), suggest(name, stage_names)));
+      return -1;
+    }
+    const int target_idx = static_cast<int>(it - stage_names.begin());
+    if (idx >= 0 && target_idx >= idx) {
+      v.error_at(m, key_path,
+                 fmt::format("stage '{}' runs {} this one: a stage can only {} stages before it",
+                             name, target_idx == idx ? "as" : "after", use));
+      return -1;
+    }
+    return target_idx;
+  };
   for (const auto& r : v.references()) {
     YAML::Mark m;
     m.line = r.line - 1;
@@ -244,8 +220,9 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     const int idx = stage_index_of(r.key_path, first_use);
     if (r.type == Reference::Target::kMaterial) {
       if (!materials.IsMap() || !materials[r.target]) {
-        v.error_at(m, r.key_path,
-                   fmt::format("material '{}' is not defined under 'materials'", r.target));
+        v.error_at(
+            m, r.key_path,
+            fmt::format("material '{}' is not defined under 'materials'", clipped(r.target)));
         continue;
       }
       const YAML::Node mk = materials[r.target]["kind"];
@@ -260,37 +237,37 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
       }
       continue;
     }
+    if (r.type == Reference::Target::kStage) {
+      const int target_idx = earlier_stage(r.target, idx, m, r.key_path, "start from");
+      const StageKindSpec* spec = target_idx >= 0 ? stage_specs[target_idx] : nullptr;
+      if (spec && std::find(r.kinds.begin(), r.kinds.end(), spec->kind) == r.kinds.end()) {
+        v.error_at(m, r.key_path,
+                   fmt::format("stage '{}' is a {} stage; this key takes a stage of kind {}",
+                               r.target, spec->kind, fmt::join(r.kinds, " or ")));
+      }
+      continue;
+    }
     const auto dot = r.target.find('.');
     if (dot == std::string::npos) {
-      v.error_at(m, r.key_path,
-                 fmt::format("'{}' is not a stage output: write <stage>.<output>", r.target));
+      v.error_at(
+          m, r.key_path,
+          fmt::format("'{}' is not a stage output: write <stage>.<output>", clipped(r.target)));
       continue;
     }
     const std::string sname = r.target.substr(0, dot);
     const std::string oname = r.target.substr(dot + 1);
-    const auto it = std::find(stage_names.begin(), stage_names.end(), sname);
-    if (it == stage_names.end()) {
-      v.error_at(m, r.key_path,
-                 fmt::format("no stage is named '{}'{}", sname, suggest(sname, stage_names)));
-      continue;
-    }
-    const int target_idx = static_cast<int>(it - stage_names.begin());
-    if (idx >= 0 && target_idx >= idx) {
-      v.error_at(m, r.key_path,
-                 fmt::format("stage '{}' runs {} this one: a stage can only use outputs of "
-                             "stages before it",
-                             sname, target_idx == idx ? "as" : "after"));
-      continue;
-    }
+    const int target_idx = earlier_stage(sname, idx, m, r.key_path, "use outputs of");
+    if (target_idx < 0) continue;
     const StageKindSpec* spec = stage_specs[target_idx];
     if (!spec) continue;
     const OutputSpec* out = spec->output(oname);
     if (!out) {
       std::vector<std::string> names;
       for (const auto& o : spec->outputs) names.push_back(o.name);
-      v.error_at(m, r.key_path,
-                 fmt::format("stage '{}' ({}) has no output '{}' (outputs: {}){}", sname,
-                             spec->kind, oname, fmt::join(names, ", "), suggest(oname, names)));
+      v.error_at(
+          m, r.key_path,
+          fmt::format("stage '{}' ({}) has no output '{}' (outputs: {}){}", sname, spec->kind,
+                      clipped(oname), fmt::join(names, ", "), suggest(oname, names)));
     } else if (out->shape != r.wants) {
       v.error_at(m, r.key_path,
                  fmt::format("output '{}' is {}; this key takes {}", r.target,
@@ -324,14 +301,9 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
       if (!file_node || !file_node.IsScalar()) continue;  // already reported
       const std::string file = file_node.Scalar();
       Validator fv(file);
-      YAML::Node doc;
-      try {
-        doc = YAML::LoadFile(file);
-      } catch (const YAML::Exception& e) {
-        fv.error_at(e.mark, "", fmt::format("YAML syntax error: {}", e.msg));
-      }
-      if (fv.errors().empty()) {
-        YAML::Node checked = fv.check(dpd_potential_schema(), doc, "potential");
+      const std::optional<YAML::Node> doc = load_yaml_source(file, fv, "a potential file");
+      if (doc) {
+        YAML::Node checked = fv.check(dpd_potential_schema(), *doc, "potential");
         if (fv.errors().empty()) resolved["materials"][name]["potential"] = checked;
       }
       file_errors.insert(file_errors.end(), fv.errors().begin(), fv.errors().end());
@@ -357,6 +329,8 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
   wf.source_file = path;
   wf.resolved = resolved;
   wf.run_name = resolved["run"]["name"].as<std::string>();
+  wf.run_name_line = root["run"]["name"].Mark().line + 1;
+  wf.run_name_column = root["run"]["name"].Mark().column + 1;
   wf.output_dir = resolved["run"]["output"].as<std::string>();
   wf.seed = resolved["run"]["seed"].as<uint64_t>();
   wf.materials = resolved["materials"];

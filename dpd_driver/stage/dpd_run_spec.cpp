@@ -29,12 +29,15 @@ std::vector<Param> common_params() {
            .def(std::vector<double>{0.0, 0.0, 0.0})
            .length(3, 3)},
       "A crystal of the stage's material: fcc sites of its lattice_constant inside a region");
-  const Param initial = Param::map(
-      "initial",
-      {Param::identifier("from_stage", "An earlier dpd_equilibrate or dpd_run stage's final state"),
-       Param::file("h5md", "The last frame of an H5MD file"),
-       Param::file("lammps_data", "A LAMMPS data file (atom_style atomic)")},
-      "Start from an existing state instead of `bodies` (exactly one key)");
+  const Param initial =
+      Param::map("initial",
+                 {Param::identifier("from_stage",
+                                    "An earlier dpd_equilibrate or dpd_run stage's final state")
+                      .earlier_stage({"dpd_run", "dpd_equilibrate"}),
+                  Param::file("h5md", "The last frame of an H5MD file"),
+                  Param::file("lammps_data", "A LAMMPS data file (atom_style atomic)")},
+                 "Start from an existing state instead of `bodies`")
+          .exactly_one_key();
   const Param group = Param::map(
       "group",
       {Param::identifier("name", "Group name").require(),

@@ -12,11 +12,12 @@ source "$(dirname "$0")/lib.sh"
 # moves velocities by 1e-3 Å/ps or more.
 cfg="$(dirname "$0")/configs/dpd_ranks.yaml"
 shardlow_cfg="$(dirname "$0")/configs/dpd_ranks_shardlow.yaml"
+# Each rank count reruns the same run names on purpose: --overwrite.
 for n in 1 2 4; do
-  "$PBMS" run "$cfg" --ranks dpd=$n > out_$n.txt 2>&1 || { cat out_$n.txt; fail "run on $n ranks"; }
+  "$PBMS" run "$cfg" --ranks dpd=$n --overwrite > out_$n.txt 2>&1 || { cat out_$n.txt; fail "run on $n ranks"; }
   cp runs/dpd_ranks/thermostat/particles.h5md particles_$n.h5md
   cp runs/dpd_ranks/initial_forces/particles.h5md forces_$n.h5md
-  "$PBMS" run "$shardlow_cfg" --ranks dpd=$n > out_shardlow_$n.txt 2>&1 ||
+  "$PBMS" run "$shardlow_cfg" --ranks dpd=$n --overwrite > out_shardlow_$n.txt 2>&1 ||
     { cat out_shardlow_$n.txt; fail "Shardlow run on $n ranks"; }
   cp runs/dpd_ranks_shardlow/shardlow/particles.h5md shardlow_$n.h5md
   cp runs/dpd_ranks_shardlow/dpde/particles.h5md dpde_$n.h5md

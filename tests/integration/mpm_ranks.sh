@@ -10,8 +10,9 @@ grep -q "gradient: ddmp" ddmp.yaml || fail "could not make the DDMP variant of $
 for variant in plain ddmp; do
   c="$cfg"
   [ "$variant" = ddmp ] && c=ddmp.yaml
+  # Every variant and rank count reruns the run name mpm_disks_200 on purpose: --overwrite.
   for n in 1 2 4; do
-    "$PBMS" run "$c" --ranks mpm=$n > out_${variant}_$n.txt 2>&1 ||
+    "$PBMS" run "$c" --ranks mpm=$n --overwrite > out_${variant}_$n.txt 2>&1 ||
       { cat out_${variant}_$n.txt; fail "$variant run on $n ranks"; }
     cp runs/mpm_disks_200/disks/particles.h5md particles_${variant}_$n.h5md
   done

@@ -206,3 +206,140 @@ TEST(Workflow, MaterialReferencesFollowTheStageOrder) {
   EXPECT_EQ(e.errors[0].key_path, "materials.rod.youngs_modulus");
   EXPECT_NE(e.errors[0].message.find("runs after"), std::string::npos) << e.errors[0].format();
 }
+
+namespace {
+
+// Every error of loading `text` as one string, one per line.
+std::string errors_of(const std::string& name, const std::string& text) {
+  const auto r = load_workflow(write(name, text), md_only());
+  std::string all;
+  for (const auto& e : r.errors) all += e.format() + "\n";
+  return all;
+}
+
+}  // namespace
+
+TEST(Workflow, OrdinaryAnchorsAndAliasesAreAccepted) {
+  const auto f = write("anchors.yaml", std::string(kHeader) + R"(stages:
+  - {name: a, kind: md_elastic, material: cu, cells: &cells [3, 3, 3]}
+  - {name: b, kind: md_elastic, material: cu, cells: *cells}
+  - &wire {name: c, kind: md_tension, material: cu, cells: [20, 4, 4]}
+)");
+  const auto r = load_workflow(f, md_only());
+  ASSERT_TRUE(r.errors.empty()) << r.errors[0].format();
+  EXPECT_EQ(r.workflow->stages[1].params["cells"][2].as<int>(), 3);
+}
+
+TEST(Workflow, RefusesAliasesThatCannotBeExpanded) {
+  const std::string undefined =
+      errors_of("undefined.yaml", std::string(kHeader) +
+                                      "stages: [{name: a, kind: md_elastic, material: cu, "
+                                      "cells: *nowhere}]\n");
+  EXPECT_NE(undefined.find("undefined.yaml:9:59: error: <document>: YAML syntax error: the "
+                           "referenced anchor is not defined"),
+            std::string::npos)
+      << undefined;
+  // yaml-cpp would link the alias to the map that holds it: a cycle that
+  // every walk of the tree follows until the stack overflows.
+  const std::string recursive =
+      errors_of("recursive.yaml", std::string(kHeader) +
+                                      "stages:\n  - &s {name: a, kind: "
+                                      "md_elastic, material: cu, cells: *s}\n");
+  EXPECT_NE(recursive.find("recursive.yaml:10:57: error: stages[0].cells: the alias '*s' stands "
+                           "inside the node its anchor names (line 10)"),
+            std::string::npos)
+      << recursive;
+  std::string laughs = std::string(kHeader) + "l0: &l0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  for (int i = 1; i <= 7; ++i) {
+    laughs += "l" + std::to_string(i) + ": &l" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) laughs += (k ? ", *l" : "*l") + std::to_string(i - 1);
+    laughs += "]\n";
+  }
+  const std::string expanded = errors_of("laughs.yaml", laughs);
+  EXPECT_NE(expanded.find("takes the document past 1000000 values"), std::string::npos) << expanded;
+}
+
+TEST(Workflow, RefusesSecondDocumentsRepeatedKeysAndNonFiniteNumbers) {
+  const std::string two =
+      errors_of("two.yaml", std::string(kHeader) +
+                                "stages: [{name: a, kind: md_elastic, material: cu}]\n"
+                                "---\nrun: {name: other}\n");
+  EXPECT_NE(two.find("two.yaml:10:1: error: <document>: a second YAML document starts here"),
+            std::string::npos)
+      << two;
+  const std::string repeated = errors_of(
+      "repeated.yaml", std::string(kHeader) +
+                           "stages: [{name: a, kind: md_elastic, material: cu, strain: 0.001, "
+                           "strain: 0.002}]\n");
+  EXPECT_NE(repeated.find("stages[0].strain: the key 'strain' is given twice in this map (first "
+                          "on line 9)"),
+            std::string::npos)
+      << repeated;
+  for (const std::string value : {".nan", "nan", ".inf", "-.Inf", "inf K", "infinity"}) {
+    const std::string e =
+        errors_of("nonfinite.yaml", std::string(kHeader) +
+                                        "stages: [{name: a, kind: md_elastic, material: "
+                                        "cu, temperature: " +
+                                        value + "}]\n");
+    EXPECT_NE(
+        e.find("stages[0].temperature: expected real [K]: '" + value + "' is not a finite number"),
+        std::string::npos)
+        << value << ": " << e;
+  }
+  std::string header = kHeader;
+  header.replace(header.find("{md: 2}"), 7, "{md: 3000000000}");
+  const std::string big =
+      errors_of("int.yaml", header + "stages: [{name: a, kind: md_elastic, material: cu}]\n");
+  EXPECT_NE(big.find("launch.md: value 3000000000 is too large: at most 2147483647"),
+            std::string::npos)
+      << big;
+}
+
+TEST(Workflow, NamesUnitsOfTheWrongDimension) {
+  const std::string e =
+      errors_of("dimension.yaml", std::string(kHeader) +
+                                      "stages: [{name: a, kind: md_tension, material: cu, "
+                                      "lattice_constant: 2 GPa}]\n");
+  EXPECT_NE(e.find("stages[0].lattice_constant: expected real [Å]: 'GPa' in '2 GPa' measures a "
+                   "pressure, but this key takes a length: accepted units are Å"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Workflow, LongValuesAndHugeFilesAreRefusedNotCrashed) {
+  // A stage name of 60,000 characters is a valid name: checking it used to
+  // recurse once per character in std::regex.
+  const std::string name(60000, 'n');
+  const auto r =
+      load_workflow(write("long_name.yaml", std::string(kHeader) + "stages: [{name: " + name +
+                                                ", kind: md_elastic, material: cu}]\n"),
+                    md_only());
+  ASSERT_TRUE(r.errors.empty()) << r.errors[0].format().substr(0, 300);
+  EXPECT_EQ(r.workflow->stages[0].name, name);
+  // Over 1 MiB: refused at 1:1 before YAML reads it.
+  const std::string huge =
+      errors_of("huge.yaml", "run: {name: \"" + std::string(3000000, 'a') + "\"}\n");
+  EXPECT_NE(huge.find("huge.yaml:1:1: error: <document>: the file is 3000016 bytes; a workflow is "
+                      "at most 1048576 bytes"),
+            std::string::npos)
+      << huge.substr(0, 300);
+  // Unknown keys and kinds are shown cut, not in full.
+  const std::string kind(50000, 'k');
+  const std::string e = errors_of(
+      "long_kind.yaml", std::string(kHeader) + "stages: [{name: a, kind: " + kind + "}]\n");
+  EXPECT_NE(e.find("unknown stage kind '" + kind.substr(0, 60) + "...'"), std::string::npos)
+      << e.substr(0, 300);
+  EXPECT_LT(e.size(), 2000u);
+}
+
+TEST(Workflow, FileProblemsNameTheCause) {
+  EXPECT_EQ(file_problem("/etc/hostname"), "");
+  EXPECT_EQ(file_problem("/etc/hostname/x.eam"),
+            "cannot exist: '/etc/hostname' is a file, not a directory");
+  EXPECT_EQ(file_problem("/etc"), "is a directory, not a file");
+  EXPECT_EQ(file_problem("/no/such/file"), "does not exist");
+  EXPECT_EQ(directory_problem("/etc/hostname/out/run"),
+            "'/etc/hostname' is a file, not a directory");
+  EXPECT_EQ(directory_problem("/etc/hostname"), "'/etc/hostname' exists and is not a directory");
+  EXPECT_EQ(directory_problem(std::filesystem::temp_directory_path() / "pbms_unit/new/run"), "");
+}

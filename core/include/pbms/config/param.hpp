@@ -47,6 +47,9 @@ struct Param {
   bool allow_reference = false;  // may be {from: <stage>.<output>}
   bool names_material = false;   // value must name an entry of `materials`
   bool allow_auto = false;       // kReal may also be the word `auto`
+  // kName: the value names an earlier stage of one of these kinds.
+  std::vector<std::string> stage_kinds;
+  bool one_key = false;  // kMap: exactly one of its keys is given
   std::vector<Param> fields;
   // kMap with variants: `discriminator` names the key whose value picks the
   // extra fields in `variants` (stage "kind", material "kind").
@@ -109,6 +112,14 @@ struct Param {
   }
   Param& material() {
     names_material = true;
+    return *this;
+  }
+  Param& earlier_stage(std::vector<std::string> kinds) {
+    stage_kinds = std::move(kinds);
+    return *this;
+  }
+  Param& exactly_one_key() {
+    one_key = true;
     return *this;
   }
   Param& variant(const std::string& value, std::vector<Param> extra, std::string doc);

@@ -3,6 +3,7 @@
 // quantities converted to metal units.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,13 +15,15 @@
 
 namespace pbms::config {
 
-// A `{from: stage.output}` found while validating; checked by the workflow,
-// which knows the stage order and what each stage kind produces.
+// A `{from: stage.output}` found while validating, or a name of a material
+// or of a stage; checked by the workflow, which knows the stage order and
+// what each stage kind produces.
 struct Reference {
-  enum class Target { kStageOutput, kMaterial };
+  enum class Target { kStageOutput, kMaterial, kStage };
   Target type = Target::kStageOutput;
   std::string key_path;
-  std::string target;  // "stage.output", or a material name
+  std::string target;              // "stage.output", or a material or stage name
+  std::vector<std::string> kinds;  // kStage: the stage kinds the key takes
   // What the key takes: a number, a table (kTable keys) or a map.
   OutputSpec::Shape wants = OutputSpec::Shape::kScalar;
   int line = 0, column = 0;
@@ -45,6 +48,7 @@ class Validator {
 
  private:
   YAML::Node check_scalar(const Param& p, const YAML::Node& node, const std::string& path);
+  void check_unique_keys(const YAML::Node& node, const std::string& path);
   bool check_range(const Param& p, double v, const YAML::Node& node, const std::string& path);
 
   std::string file_;
@@ -53,6 +57,14 @@ class Validator {
 };
 
 std::string join_path(const std::string& parent, const std::string& key);
+// A user's value inside a message: a long one (a line of megabytes) is cut
+// to `n` characters and "...".
+std::string clipped(const std::string& s, size_t n = 60);
+// Why `file` cannot be read as a regular file ("does not exist", "cannot
+// exist: '/etc/hostname' is a file, not a directory"), or empty if it can.
+std::string file_problem(const std::filesystem::path& file);
+// Why the directory `dir` cannot be created or written, or empty.
+std::string directory_problem(const std::filesystem::path& dir);
 // "did you mean 'x'?" for near misses (edit distance <= 2), else empty.
 std::string suggest(const std::string& key, const std::vector<std::string>& candidates);
 

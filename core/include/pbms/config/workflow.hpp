@@ -30,6 +30,7 @@ struct StageConfig {
 struct Workflow {
   std::string source_file;
   std::string run_name;
+  int run_name_line = 0, run_name_column = 0;  // where run.name is written
   std::string output_dir;
   uint64_t seed = 0;
   std::map<std::string, int> ranks;  // program -> rank count, for drivers in use
