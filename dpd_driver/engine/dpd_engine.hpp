@@ -79,6 +79,9 @@ class DpdEngine {
   // Ghosts follow their owners, or when a particle moved more than half
   // the skin: wrap, migrate, new ghosts and neighbour list.
   void update_neighbours();
+  // The step count moves on (it keys the pair noise) for a scheme that
+  // moved the particles itself (DpdGridStep).
+  void count_step() { ++step_; }
   // Pair forces at the current positions (with the dissipative and random
   // parts for velocity Verlet, from the current velocities).
   PairResult compute_forces(Tally tally = Tally::kForcesOnly);
