@@ -8,6 +8,7 @@
 #include "materials/stressless_particle.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/shape_function.hpp"
+#include "pbms/units.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -69,7 +70,14 @@ DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
   opt.reference_point_mass = *std::min_element(p.mass_per_type.begin(), p.mass_per_type.end());
   solver_ = std::make_unique<mpm::MpmSolver>(patch, grid::ShapeFunctionRegistry::create("linear"),
                                              std::move(materials), opt);
-  bc_.point_velocities = settings.prescribed;
+  for (const auto& g : settings.rigid) {
+    bc_.point_velocities.push_back({g.mask, {true, true, true}, g.velocity});
+    double mass = 0.0;
+    for (std::size_t i = 0; i < engine.owned(); ++i) {
+      if ((p.group_mask[i] & g.mask) != 0) mass += p.mass(i);
+    }
+    body_mass_.push_back(mass);
+  }
   // The points' volume only enters a stress term, which is zero here.
   const double volume = box.volume() / static_cast<double>(std::max<std::size_t>(1, p.size()));
   for (std::size_t i = 0; i < engine.owned(); ++i) {
@@ -111,9 +119,26 @@ void DpdGridStep::store_points() {
   }
 }
 
+void DpdGridStep::push_free_bodies() {
+  const DpdParticles& p = engine_.particles();
+  // f / m in eV/Å/(g/mol) is mvv2e Å/ps² too small.
+  const double dt = engine_.settings().dt / units::kMvv2e;
+  for (std::size_t b = 0; b < settings_.rigid.size(); ++b) {
+    const auto& g = settings_.rigid[b];
+    if (!g.free_body || !(body_mass_[b] > 0.0)) continue;
+    mpm::Vec3 force{0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < engine_.owned(); ++i) {
+      if ((p.group_mask[i] & g.mask) == 0) continue;
+      for (int a = 0; a < 3; ++a) force[a] += p.f[i][a];
+    }
+    for (int a = 0; a < 3; ++a) bc_.point_velocities[b].velocity[a] += dt * force[a] / body_mass_[b];
+  }
+}
+
 void DpdGridStep::step() {
   engine_.update_neighbours();
   engine_.compute_forces();
+  push_free_bodies();
   load_points();
   solver_->step(points_, bc_, engine_.settings().dt);
   store_points();

@@ -14,7 +14,8 @@
 //
 // Rigid groups enter in one way, wherever they appear: as prescribed-
 // velocity groups of the grid step (the particles keep the group's
-// velocity, and the nodes they touch move with it), as an MPM grip does.
+// velocity, and the nodes they touch move with it), as an MPM grip does;
+// a free rigid body's velocity first takes the net pair force on it.
 //
 // One rank for now: a decomposed run needs the DPD sub-boxes to be the
 // grid partition's, which the constructor refuses to assume.
@@ -35,9 +36,16 @@ struct DpdGridSettings {
   // Cells of grid beyond the box on each free (non-periodic) axis, for
   // surfaces that move out.
   int free_axis_margin_cells = 4;
-  // Groups moved at a prescribed velocity (grips, walls, a flyer at its
-  // launch speed); group bits as DpdParticles::group_mask.
-  std::vector<mpm::PointVelocity> prescribed;
+  // Rigid groups, group bits as DpdParticles::group_mask: each moves at
+  // its velocity on the grid (PointVelocity on every axis). A free body's
+  // velocity changes each step by the net pair force on its particles over
+  // their mass (a flyer); the others keep theirs (grips, walls).
+  struct RigidGroup {
+    std::uint32_t mask = 0;
+    mpm::Vec3 velocity{0.0, 0.0, 0.0};
+    bool free_body = false;
+  };
+  std::vector<RigidGroup> rigid;
 };
 
 class DpdGridStep {
@@ -57,6 +65,8 @@ class DpdGridStep {
  private:
   void load_points();
   void store_points();
+  // Free bodies: v += dt F / M, from this step's pair forces.
+  void push_free_bodies();
 
   DpdEngine& engine_;
   DpdGridSettings settings_;
@@ -64,6 +74,7 @@ class DpdGridStep {
   mpm::MaterialPoints points_;
   mpm::BoundaryConditions bc_;
   std::vector<mpm::Vec3> forces_;
+  std::vector<double> body_mass_;  // per settings_.rigid entry, g/mol
 };
 
 }  // namespace pbms::dpd

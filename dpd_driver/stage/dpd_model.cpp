@@ -185,6 +185,7 @@ DpdModel build_dpd_model(const YAML::Node& p, const YAML::Node& material, std::u
     } else if (kind != "velocity") {
       m.prescribed_mask |= bit;
     }
+    if (kind != "velocity") m.group_motions.push_back({bit, v, kind == "rigid_body"});
   }
 
   // Integrator.

@@ -26,6 +26,14 @@ struct DpdModel {
   DpdIntegratorSettings settings;
   std::uint32_t prescribed_mask = 0;        // rigid and frozen groups
   std::vector<std::uint32_t> rigid_bodies;  // free rigid bodies, one group each
+  // Every rigid, frozen or rigid_body group with the velocity it starts at
+  // (the DPD/MPM-grid step prescribes them on the grid).
+  struct GroupMotion {
+    std::uint32_t mask = 0;
+    Vec3 velocity{0.0, 0.0, 0.0};
+    bool free_body = false;  // rigid_body: pushed by the net force on it
+  };
+  std::vector<GroupMotion> group_motions;
 
   // Throws pbms::Error naming the known groups when `name` is unknown.
   [[nodiscard]] std::uint32_t group_mask(const std::string& name) const;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include "dpd_model.hpp"
 #include "dpd_probes.hpp"
 #include "engine/dpd_engine.hpp"
+#include "engine/dpd_grid_step.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
@@ -90,6 +92,28 @@ double first_crossing(const std::vector<double>& t, const std::vector<double>& s
   return std::nan("");
 }
 
+// The DPD/MPM-grid step of a stage's `grid` map, with the stage's rigid
+// groups prescribed on the grid.
+std::unique_ptr<DpdGridStep> make_grid_step(DpdEngine& engine, const YAML::Node& grid,
+                                            const std::vector<DpdModel::GroupMotion>& motions,
+                                            const std::string& stage) {
+  if (is_shardlow(engine.settings().scheme)) {
+    throw Error(fmt::format(
+        "stage '{}': the grid model needs scheme velocity_verlet or nve (a Shardlow sweep "
+        "moves the velocities outside the grid step)",
+        stage));
+  }
+  DpdGridSettings s;
+  s.cell_size = grid["cell_size"].as<double>();
+  s.flip = grid["flip"].as<double>();
+  for (const auto& m : motions) s.rigid.push_back({m.mask, m.velocity, m.free_body});
+  try {
+    return std::make_unique<DpdGridStep>(engine, s);
+  } catch (const Error& e) {
+    throw Error(fmt::format("stage '{}': {}", stage, e.what()));
+  }
+}
+
 void run_stage(StageContext& ctx, Mode mode) {
   const YAML::Node& p = ctx.params();
   const int rank = ctx.rank();
@@ -98,10 +122,13 @@ void run_stage(StageContext& ctx, Mode mode) {
   const double lattice_constant = material["lattice_constant"].as<double>();
   const std::uint32_t prescribed = model.prescribed_mask;
   const std::vector<std::uint32_t> rigid_bodies = model.rigid_bodies;
+  const auto group_motions = model.group_motions;
   DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
                    std::move(model.particles));
   engine.set_prescribed_groups(prescribed);
   engine.set_rigid_bodies(rigid_bodies);
+  std::unique_ptr<DpdGridStep> grid_step;
+  if (p["grid"]) grid_step = make_grid_step(engine, p["grid"], group_motions, ctx.stage());
 
   const auto steps = p["steps"].as<std::int64_t>();
   const auto sample_every = p["sample_every"].as<std::int64_t>();
@@ -235,7 +262,11 @@ void run_stage(StageContext& ctx, Mode mode) {
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= steps; ++n) {
     set_current_step(n);
-    engine.step();
+    if (grid_step) {
+      grid_step->step();
+    } else {
+      engine.step();
+    }
     if (mode == Mode::kEquilibrate) engine.berendsen(target_t, tau);
     if (mode == Mode::kImpact) track_slabs(n);
     if (n % sample_every == 0 || n == steps) sample(n);

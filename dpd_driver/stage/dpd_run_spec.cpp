@@ -129,6 +129,21 @@ std::vector<Param> common_params() {
                   "inside, minus 3)")
           .def(21.0)
           .above(0),
+      Param::map(
+          "grid",
+          {Param::real("cell_size", Dimension::kLength,
+                       "Cell edge h; below dpd_cutoff (seed §2.4), and a whole number of cells "
+                       "along each periodic axis")
+               .require()
+               .above(0),
+           Param::real("flip", Dimension::kNone, "FLIP/PIC blend of the particle velocity update")
+               .def(1.0)
+               .at_least(0)
+               .at_most(1)},
+          "The DPD/MPM-grid model (seed §2.4, §5.2): pair forces mapped to an MPM grid, "
+          "particles moved with the grid velocity, instead of velocity Verlet. Rigid, frozen "
+          "and rigid_body groups move rigidly on the grid. One rank; scheme velocity_verlet "
+          "or nve"),
       Param::real("time_step", Dimension::kTime, "Time step").def(0.01).above(0),
       Param::integer("steps", "Time steps; 0 writes the initial forces and energies")
           .require()
