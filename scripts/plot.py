@@ -411,6 +411,46 @@ def plot_profiles_together(stages, outdir):
     return finish(fig, os.path.join(outdir, "profiles.png"))
 
 
+def plot_runs_together(stages, outdir):
+    """Stages of one kind of analysis side by side (the DPD/MPM-grid model
+    against DPD-only): every tension curve on one axis, every impact's slab
+    displacements on one axis."""
+    written = []
+    curves = [s for s in stages if s.tables.get("tension_curve") is not None]
+    if len(curves) >= 2:
+        fig, ax = plt.subplots(figsize=(6.5, 4.2))
+        for st in curves:
+            t = st.tables["tension_curve"]
+            grid = st.attrs.get("grid_cell_size")
+            name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
+            ax.plot(t["strain"], t["stress"], lw=1.0,
+                    label=f"{name}, E = {st.scalar('youngs_modulus'):.2f} GPa")
+        ax.set_xlabel(label("strain", curves[0].tables["tension_curve"].units.get("strain")))
+        ax.set_ylabel(label("stress", curves[0].tables["tension_curve"].units.get("stress")))
+        ax.set_title("tension curves")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        written += finish(fig, os.path.join(outdir, "tension_curves.png"))
+    impacts = [s for s in stages if s.tables.get("slabs") is not None]
+    if len(impacts) >= 2:
+        fig, ax = plt.subplots(figsize=(6.5, 4.2))
+        for k, st in enumerate(impacts):
+            t = st.tables["slabs"]
+            grid = st.attrs.get("grid_cell_size")
+            name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
+            c = f"C{k}"
+            ax.plot(t["time"], t["near_displacement"], "-", color=c, lw=1.0,
+                    label=f"{name}: near slab, c = {st.scalar('wave_speed'):.0f} m/s")
+            ax.plot(t["time"], t["far_displacement"], "--", color=c, lw=1.0, label=f"{name}: far slab")
+        ax.set_xlabel(label("time", t.units.get("time")))
+        ax.set_ylabel(label("displacement", t.units.get("near_displacement")))
+        ax.set_title("impact: slab displacements")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+        written += finish(fig, os.path.join(outdir, "impact_slabs.png"))
+    return written
+
+
 def plot_fit(stage, outdir):
     """fit_dpd_potential: the objective per evaluation, the fitted isotherm
     against its targets with residuals, and the elastic constants side by side."""
@@ -514,6 +554,7 @@ def main(argv):
                 result = plot_generic(stage, run_dir)
             written += result
         written += plot_profiles_together(finished, run_dir)
+        written += plot_runs_together(finished, run_dir)
     if not written:
         print(f"plot.py: nothing to plot in {path} (no finished stage with tables)",
               file=sys.stderr)

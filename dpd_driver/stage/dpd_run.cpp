@@ -379,6 +379,8 @@ void run_stage(StageContext& ctx, Mode mode) {
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],
                                               engine.domain().dims()[1], engine.domain().dims()[2]);
   r.attributes["neighbour_list_builds"] = fmt::format("{}", engine.rebuilds());
+  if (grid_step)
+    r.attributes["grid_cell_size"] = fmt::format("{:g}", grid_step->grid().cell_size());
   if (h5md) r.files.push_back((std::filesystem::path(ctx.stage()) / "particles.h5md").string());
 }
 
