@@ -6,10 +6,17 @@
 namespace pbms::coupling {
 namespace {
 
-// Several blocks between one pair of ranks (periodic images) are told
-// apart by their shift, as a base-3 number.
-int tag_of(const std::array<int, 3>& s) {
-  return 300 + (s[0] + 1) + 3 * (s[1] + 1) + 9 * (s[2] + 1);
+constexpr int kNodalSumTag = 300;
+
+// Consecutive transfers with the same peer (the plan lists each peer's
+// blocks together, images in a fixed order on both sides).
+std::vector<PeerRange> by_peer(const std::vector<NodeTransfer>& t) {
+  std::vector<PeerRange> out;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (out.empty() || out.back().peer != t[i].peer) out.push_back({t[i].peer, i, i});
+    out.back().end = i + 1;
+  }
+  return out;
 }
 
 }  // namespace
@@ -23,49 +30,60 @@ NodalSumAcrossPrograms::NodalSumAcrossPrograms(MPI_Comm inter, const grid::GridP
   local_ = mine.nodes_of(rank);
   receives_ = receives_of(mine, rank, theirs, band);
   sends_ = sends_of(mine, rank, theirs, band);
-  send_buf_.resize(sends_.size());
-  recv_buf_.resize(receives_.size());
+  send_peers_ = by_peer(sends_);
+  recv_peers_ = by_peer(receives_);
+  send_buf_.resize(send_peers_.size());
+  recv_buf_.resize(recv_peers_.size());
 }
 
+// One message per peer and direction: a peer's blocks (one per periodic
+// image) travel packed together.
 void NodalSumAcrossPrograms::sum(double* data, int components, int stride) {
   const double start = MPI_Wtime();
   const auto nc = static_cast<size_t>(components);
   const auto ns = static_cast<size_t>(stride);
-  requests_.assign(sends_.size() + receives_.size(), MPI_REQUEST_NULL);
-  for (size_t r = 0; r < receives_.size(); ++r) {
+  requests_.assign(send_peers_.size() + recv_peers_.size(), MPI_REQUEST_NULL);
+  for (size_t r = 0; r < recv_peers_.size(); ++r) {
+    std::int64_t nodes = 0;
+    for (size_t b = recv_peers_[r].begin; b < recv_peers_[r].end; ++b)
+      nodes += receives_[b].nodes.count();
     auto& buf = recv_buf_[r];
-    buf.resize(static_cast<size_t>(receives_[r].nodes.count()) * nc);
-    mpi::check(MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, receives_[r].peer,
-                         tag_of(receives_[r].shift), inter_, &requests_[r]),
+    buf.resize(static_cast<size_t>(nodes) * nc);
+    mpi::check(MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, recv_peers_[r].peer,
+                         kNodalSumTag, inter_, &requests_[r]),
                "MPI_Irecv (nodal sum across programs)");
   }
   // Every block is packed before anything is added, so each side sends
   // only its own part.
-  for (size_t s = 0; s < sends_.size(); ++s) {
-    const NodeTransfer& t = sends_[s];
-    auto& buf = send_buf_[s];
+  for (size_t p = 0; p < send_peers_.size(); ++p) {
+    auto& buf = send_buf_[p];
     buf.clear();
-    grid::for_each_node(t.nodes, [&](std::array<int, 3> ijk) {
-      for (size_t a = 0; a < 3; ++a) ijk[a] -= t.shift[a] * cells_[a];
-      const double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
-      buf.insert(buf.end(), d, d + nc);
-    });
-    mpi::check(MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, t.peer,
-                         tag_of(t.shift), inter_, &requests_[receives_.size() + s]),
+    for (size_t b = send_peers_[p].begin; b < send_peers_[p].end; ++b) {
+      const NodeTransfer& t = sends_[b];
+      grid::for_each_node(t.nodes, [&](std::array<int, 3> ijk) {
+        for (size_t a = 0; a < 3; ++a) ijk[a] -= t.shift[a] * cells_[a];
+        const double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
+        buf.insert(buf.end(), d, d + nc);
+      });
+    }
+    mpi::check(MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, send_peers_[p].peer,
+                         kNodalSumTag, inter_, &requests_[recv_peers_.size() + p]),
                "MPI_Isend (nodal sum across programs)");
     profile_.bytes_sent += static_cast<std::int64_t>(buf.size() * sizeof(double));
   }
-  profile_.messages_sent += static_cast<std::int64_t>(sends_.size());
+  profile_.messages_sent += static_cast<std::int64_t>(send_peers_.size());
   const double posted = MPI_Wtime();
   mpi::check(MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE),
              "MPI_Waitall (nodal sum across programs)");
   const double arrived = MPI_Wtime();
-  for (size_t r = 0; r < receives_.size(); ++r) {
+  for (size_t r = 0; r < recv_peers_.size(); ++r) {
     const double* in = recv_buf_[r].data();
-    grid::for_each_node(receives_[r].nodes, [&](const std::array<int, 3>& ijk) {
-      double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
-      for (size_t c = 0; c < nc; ++c) d[c] += *in++;
-    });
+    for (size_t b = recv_peers_[r].begin; b < recv_peers_[r].end; ++b) {
+      grid::for_each_node(receives_[b].nodes, [&](const std::array<int, 3>& ijk) {
+        double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
+        for (size_t c = 0; c < nc; ++c) d[c] += *in++;
+      });
+    }
     profile_.bytes_received += static_cast<std::int64_t>(recv_buf_[r].size() * sizeof(double));
   }
   ++profile_.exchanges;

@@ -25,6 +25,13 @@ struct ExchangeProfile {
   double seconds_waiting = 0.0;  // in MPI_Waitall
 };
 
+// The transfers [begin, end) of a plan that go to or come from one peer.
+struct PeerRange {
+  int peer = 0;
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+
 class NodalSumAcrossPrograms {
  public:
   // `inter` joins this program's ranks (split by `mine`) to the other
@@ -48,6 +55,7 @@ class NodalSumAcrossPrograms {
   grid::NodeBox local_;
   std::array<int, 3> cells_{};
   std::vector<NodeTransfer> receives_, sends_;
+  std::vector<PeerRange> recv_peers_, send_peers_;
   std::vector<std::vector<double>> send_buf_, recv_buf_;
   std::vector<MPI_Request> requests_;
   ExchangeProfile profile_;
