@@ -17,6 +17,7 @@
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::dpd {
@@ -38,46 +39,6 @@ std::uint64_t stage_seed(std::uint64_t seed, const std::string& stage) {
 int axis_of(const YAML::Node& n) {
   const auto a = n.as<std::string>();
   return a == "x" ? 0 : a == "y" ? 1 : 2;
-}
-
-// Rows of `width` doubles from every rank, on every rank, sorted by the
-// first value (a global id).
-std::vector<double> gather_sorted(MPI_Comm comm, const std::vector<double>& local,
-                                  std::size_t width, bool to_all) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  const int n = static_cast<int>(local.size());
-  std::vector<int> counts(static_cast<std::size_t>(size)), displs(counts.size());
-  mpi::check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm), "MPI_Allgather");
-  int total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    displs[r] = total;
-    total += counts[r];
-  }
-  std::vector<double> all;
-  if (to_all || rank == 0) all.resize(static_cast<std::size_t>(total));
-  if (to_all) {
-    mpi::check(MPI_Allgatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                              MPI_DOUBLE, comm),
-               "MPI_Allgatherv");
-  } else {
-    mpi::check(MPI_Gatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                           MPI_DOUBLE, 0, comm),
-               "MPI_Gatherv");
-  }
-  const std::size_t rows = all.size() / width;
-  std::vector<std::size_t> order(rows);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return all[a * width] < all[b * width]; });
-  std::vector<double> out;
-  out.reserve(all.size());
-  for (const std::size_t i : order) {
-    out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(i * width),
-               all.begin() + static_cast<std::ptrdiff_t>((i + 1) * width));
-  }
-  return out;
 }
 
 // The time a series first exceeds `threshold`, interpolated between samples;
@@ -199,7 +160,7 @@ void run_stage(StageContext& ctx, Mode mode) {
     return rows;
   };
   auto write_frame = [&](std::int64_t step) {
-    const auto all = gather_sorted(ctx.comm(), local_rows(), width, false);
+    const auto all = mpi::sorted_rows(ctx.comm(), local_rows(), width, mpi::RowsTo::kRankZero);
     if (rank != 0) return;
     const std::size_t n = all.size() / width;
     if (!h5md) {
@@ -279,7 +240,7 @@ void run_stage(StageContext& ctx, Mode mode) {
 
   // The final state, for a later stage's initial.from_stage.
   {
-    const auto all = gather_sorted(ctx.comm(), local_rows(), width, true);
+    const auto all = mpi::sorted_rows(ctx.comm(), local_rows(), width, mpi::RowsTo::kEveryRank);
     DpdParticles state;
     state.mass_per_type = engine.particles().mass_per_type;
     for (std::size_t r = 0; r + width <= all.size(); r += width) {
@@ -294,7 +255,7 @@ void run_stage(StageContext& ctx, Mode mode) {
       for (std::size_t i = 0; i < engine.owned(); ++i) {
         rows.insert(rows.end(), {static_cast<double>(q.id[i]), q.internal_energy[i]});
       }
-      const auto u = gather_sorted(ctx.comm(), rows, 2, true);
+      const auto u = mpi::sorted_rows(ctx.comm(), rows, 2, mpi::RowsTo::kEveryRank);
       for (std::size_t r = 0; r < state.size(); ++r) state.internal_energy[r] = u[2 * r + 1];
     }
     keep_final_state(ctx.stage(), std::move(state));

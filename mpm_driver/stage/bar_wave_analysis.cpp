@@ -7,7 +7,7 @@
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
-#include "rows_on_rank_zero.hpp"
+#include "pbms/mpi/sorted_rows.hpp"
 
 namespace pbms::mpm {
 namespace {
@@ -59,7 +59,7 @@ std::vector<double> BarWaveAnalysis::profile_rows(const MpmEngine& engine) const
     rows.insert(rows.end(), {static_cast<double>(pts.id[i]), pts.x[i][0],
                              pts.state[i].stress.voigt[0], pts.volume(i)});
   }
-  return rows_on_rank_zero(engine.comm(), rows, 4);
+  return mpi::sorted_rows(engine.comm(), rows, 4, mpi::RowsTo::kRankZero);
 }
 
 void BarWaveAnalysis::sample(const MpmEngine& engine, double t) {

@@ -2,7 +2,7 @@
 
 #include <numeric>
 
-#include "rows_on_rank_zero.hpp"
+#include "pbms/mpi/sorted_rows.hpp"
 
 namespace pbms::mpm {
 
@@ -46,7 +46,7 @@ void MpmOutput::write_particles(const MpmEngine& engine, std::int64_t step, doub
     rows.insert(rows.end(), pts.x[i].begin(), pts.x[i].end());
     rows.insert(rows.end(), pts.v[i].begin(), pts.v[i].end());
   }
-  const auto all = rows_on_rank_zero(engine.comm(), rows, 7);
+  const auto all = mpi::sorted_rows(engine.comm(), rows, 7, mpi::RowsTo::kRankZero);
   if (!particles_) return;
   std::vector<double> x, v;
   for (std::size_t r = 0; r + 7 <= all.size(); r += 7) {
