@@ -41,8 +41,31 @@ grid::RegularGrid grid_over(const OrthogonalBox& box, const DpdGridSettings& s) 
 
 }  // namespace
 
+mpm::GridPatch whole_box_patch(const DpdEngine& engine, const DpdGridSettings& settings) {
+  const OrthogonalBox& box = engine.domain().box();
+  mpm::GridPatch patch = mpm::GridPatch::whole(grid_over(box, settings));
+  patch.periodic = box.periodic;
+  return patch;
+}
+
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
     : engine_(engine), settings_(settings) {
+  init(whole_box_patch(engine, settings));
+}
+
+DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings,
+                         const mpm::GridPatch& patch)
+    : engine_(engine), settings_(settings) {
+  if (std::abs(patch.domain.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
+    throw Error(fmt::format("DPD/MPM grid: the cell size {:g} Å is not the grid's spacing {:g} Å",
+                            settings.cell_size, patch.domain.cell_size()));
+  }
+  init(patch);
+}
+
+void DpdGridStep::init(const mpm::GridPatch& patch) {
+  const DpdEngine& engine = engine_;
+  const DpdGridSettings& settings = settings_;
   if (engine.domain().size() > 1) {
     throw Error("DPD/MPM grid: the grid model runs on one dpd_driver rank for now");
   }
@@ -53,8 +76,6 @@ DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
         settings.cell_size, cutoff));
   }
   const OrthogonalBox& box = engine.domain().box();
-  mpm::GridPatch patch = mpm::GridPatch::whole(grid_over(box, settings));
-  patch.periodic = box.periodic;
   std::vector<std::unique_ptr<mpm::Material>> materials;
   materials.push_back(std::make_unique<mpm::StresslessParticle>());
   mpm::SolverOptions opt;
@@ -131,16 +152,41 @@ void DpdGridStep::push_free_bodies() {
       if ((p.group_mask[i] & g.mask) == 0) continue;
       for (int a = 0; a < 3; ++a) force[a] += p.f[i][a];
     }
-    for (int a = 0; a < 3; ++a) bc_.point_velocities[b].velocity[a] += dt * force[a] / body_mass_[b];
+    for (int a = 0; a < 3; ++a)
+      bc_.point_velocities[b].velocity[a] += dt * force[a] / body_mass_[b];
   }
 }
 
 void DpdGridStep::step() {
+  compute_forces();
+  map_to_grid();
+  update_and_map_back();
+  finish_step();
+}
+
+void DpdGridStep::compute_forces() {
   engine_.update_neighbours();
   engine_.compute_forces();
   push_free_bodies();
   load_points();
-  solver_->step(points_, bc_, engine_.settings().dt);
+}
+
+void DpdGridStep::map_to_grid() {
+  const double dt = engine_.settings().dt;
+  solver_->begin_step(points_);
+  solver_->map_to_grid(points_, bc_, dt);
+  solver_->complete_nodal_sums();
+}
+
+void DpdGridStep::update_and_map_back() {
+  const double dt = engine_.settings().dt;
+  solver_->update_nodes(bc_, dt);
+  solver_->map_to_points(points_, bc_, dt);
+  solver_->complete_remap_sums();
+}
+
+void DpdGridStep::finish_step() {
+  solver_->update_stress_and_move(points_, bc_, engine_.settings().dt);
   store_points();
   engine_.count_step();
 }

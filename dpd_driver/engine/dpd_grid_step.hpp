@@ -50,19 +50,36 @@ struct DpdGridSettings {
 
 class DpdGridStep {
  public:
-  // Throws pbms::Error when the engine runs on more than one rank, when a
-  // periodic box length is not a whole number of cells (to 1e-9), or when
-  // the cell edge is not below the DPD cutoff (seed §2.4).
+  // The grid over the engine's box: whole cells on periodic axes, a margin
+  // beyond it on free ones. Throws pbms::Error when the engine runs on more
+  // than one rank, when a periodic box length is not a whole number of
+  // cells (to 1e-9), or when the cell edge is not below the DPD cutoff
+  // (seed §2.4).
   DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings);
+  // On a given grid (a concurrent run's shared one); settings.cell_size
+  // must be its spacing. Throws as above.
+  DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings, const mpm::GridPatch& patch);
 
-  // One step of the engine's dt. Throws pbms::Error naming the particle
-  // when one leaves the grid.
+  // One step of the engine's dt: the four phases below in order. Throws
+  // pbms::Error naming the particle when one leaves the grid.
   void step();
+
+  // The phases of step(), for a coupling scheme that adds another
+  // program's nodal sums between them.
+  void compute_forces();       // pair forces, free bodies pushed
+  void map_to_grid();          // mass, momentum, pair forces to the nodes (s-1, s-2, s-3b)
+  void update_and_map_back();  // nodal update, grid to particles, remap (s-4 to s-10)
+  void finish_step();          // move with the grid velocity (s-11), step counted
+
+  // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
+  // update_and_map_back, and the remapped momentum after the latter.
+  [[nodiscard]] mpm::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return solver_->grid(); }
   [[nodiscard]] const mpm::MpmSolver& solver() const { return *solver_; }
 
  private:
+  void init(const mpm::GridPatch& patch);
   void load_points();
   void store_points();
   // Free bodies: v += dt F / M, from this step's pair forces.
