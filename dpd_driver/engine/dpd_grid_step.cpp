@@ -41,29 +41,22 @@ grid::RegularGrid grid_over(const OrthogonalBox& box, const DpdGridSettings& s) 
 
 }  // namespace
 
-mpm::GridPatch whole_box_patch(const DpdEngine& engine, const DpdGridSettings& settings) {
-  const OrthogonalBox& box = engine.domain().box();
-  mpm::GridPatch patch = mpm::GridPatch::whole(grid_over(box, settings));
-  patch.periodic = box.periodic;
-  return patch;
-}
-
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
     : engine_(engine), settings_(settings) {
-  init(whole_box_patch(engine, settings));
+  init(grid_over(engine.domain().box(), settings), engine.domain().box().periodic);
 }
 
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings,
-                         const mpm::GridPatch& patch)
+                         const grid::RegularGrid& grid, const std::array<bool, 3>& periodic)
     : engine_(engine), settings_(settings) {
-  if (std::abs(patch.domain.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
+  if (std::abs(grid.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
     throw Error(fmt::format("DPD/MPM grid: the cell size {:g} Å is not the grid's spacing {:g} Å",
-                            settings.cell_size, patch.domain.cell_size()));
+                            settings.cell_size, grid.cell_size()));
   }
-  init(patch);
+  init(grid, periodic);
 }
 
-void DpdGridStep::init(const mpm::GridPatch& patch) {
+void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic) {
   const DpdEngine& engine = engine_;
   const DpdGridSettings& settings = settings_;
   if (engine.domain().size() > 1) {
@@ -76,6 +69,14 @@ void DpdGridStep::init(const mpm::GridPatch& patch) {
         settings.cell_size, cutoff));
   }
   const OrthogonalBox& box = engine.domain().box();
+  partition_ = std::make_unique<grid::GridPartition>(grid, periodic, engine.domain().size());
+  halo_ = std::make_unique<mpi::HaloSum>(engine.comm(), *partition_);
+  mpm::GridPatch patch{grid, partition_->nodes_of(engine.domain().rank()), periodic, {}};
+  if (!halo_->empty()) {
+    patch.sum_shared = [this](double* data, int components, int stride) {
+      halo_->sum(data, components, stride);
+    };
+  }
   std::vector<std::unique_ptr<mpm::Material>> materials;
   materials.push_back(std::make_unique<mpm::StresslessParticle>());
   mpm::SolverOptions opt;

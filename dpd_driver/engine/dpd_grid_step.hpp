@@ -25,6 +25,8 @@
 #include <vector>
 
 #include "engine/dpd_engine.hpp"
+#include "pbms/grid/grid_partition.hpp"
+#include "pbms/mpi/halo_sum.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/mpm_solver.hpp"
 
@@ -58,7 +60,8 @@ class DpdGridStep {
   DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings);
   // On a given grid (a concurrent run's shared one); settings.cell_size
   // must be its spacing. Throws as above.
-  DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings, const mpm::GridPatch& patch);
+  DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings, const grid::RegularGrid& grid,
+              const std::array<bool, 3>& periodic);
 
   // One step of the engine's dt: the four phases below in order. Throws
   // pbms::Error naming the particle when one leaves the grid.
@@ -76,10 +79,12 @@ class DpdGridStep {
   [[nodiscard]] mpm::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return solver_->grid(); }
+  // How the grid is split over the engine's ranks (one box on one rank).
+  [[nodiscard]] const grid::GridPartition& partition() const { return *partition_; }
   [[nodiscard]] const mpm::MpmSolver& solver() const { return *solver_; }
 
  private:
-  void init(const mpm::GridPatch& patch);
+  void init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic);
   void load_points();
   void store_points();
   // Free bodies: v += dt F / M, from this step's pair forces.
@@ -87,6 +92,9 @@ class DpdGridStep {
 
   DpdEngine& engine_;
   DpdGridSettings settings_;
+  // Sums the nodes periodic images share, as an MPM run does.
+  std::unique_ptr<grid::GridPartition> partition_;
+  std::unique_ptr<mpi::HaloSum> halo_;
   std::unique_ptr<mpm::MpmSolver> solver_;
   mpm::MaterialPoints points_;
   mpm::BoundaryConditions bc_;
