@@ -4,11 +4,12 @@ source "$(dirname "$0")/slurm_lib.sh"
 # script; a one-node Slurm started here (slurm_lib.sh) runs it through
 # sbatch, with srun --multi-prog and PBMS_APP in place of MPI_APPNUM; its
 # summary.yaml equals that of the same config run by `./pbms run` (mpirun),
-# every number to 1e-9 relative. The workflow runs md, dpd and mpm stages
-# (coupler + 1 + 1 + 2 ranks: four programs, five tasks). Also: a config
-# that does not validate is refused by --slurm as by run (file:line:col,
-# exit 1, nothing written), and a multi-prog file without PBMS_APP ends
-# with the message that says so instead of hanging.
+# every number to 1e-9 relative, and so do its HDF5 files. The workflow
+# runs md, dpd and mpm stages (coupler + 1 + 1 + 2 ranks: four programs,
+# five tasks). Also: a config that does not validate is refused by --slurm
+# as by run (file:line:col, exit 1, nothing written); the script submitted
+# a second time is refused by the job and changes nothing; and a multi-prog
+# file without PBMS_APP ends with the message that says so instead of hanging.
 cfg="$ROOT/tests/integration/configs/readers.yaml"
 for tool in sbatch slurmctld slurmd munged; do
   command -v "$tool" >/dev/null ||
@@ -55,6 +56,8 @@ ok "job.sh asks for 5 tasks and starts 4 programs with PBMS_APP 0-3"
 
 jobid=""
 cleanup() {
+  # Runs to its end even when ctest or a user interrupts the test meanwhile.
+  trap '' INT TERM
   set +e
   if [ -n "$jobid" ] && [ -n "$(squeue -h -j "$jobid" 2>/dev/null)" ]; then
     scancel "$jobid"
@@ -155,7 +158,21 @@ sys.exit(1 if bad or n_summary == 0 or n_sets == 0 else 0)
 PYEOF
 ok "the sbatch job's summary.yaml and HDF5 files equal those of ./pbms run"
 
-# 5. Without PBMS_APP every process of an srun job reads MPI_APPNUM 0: the
+# 5. The same script submitted again finds the run directory taken: the job
+# fails with the refusal and leaves the first run as it was.
+before="$(cd runs/readers && find . -type f -exec md5sum {} + | sort)"
+jobid="$(sbatch --parsable "$job")"
+state="$(wait_job "$jobid" 120)"
+case "$state" in
+  *JobState=COMPLETED*) fail "a second job of the same run name completed" ;;
+esac
+grep -q "holds an earlier run" "runs/readers.slurm/slurm-$jobid.out" ||
+  { cat "runs/readers.slurm/slurm-$jobid.out"; fail "no refusal in the second job's output"; }
+[ "$(cd runs/readers && find . -type f -exec md5sum {} + | sort)" = "$before" ] ||
+  fail "the second job changed the first run's files"
+ok "a second submission is refused ($state) and leaves the first run unchanged"
+
+# 6. Without PBMS_APP every process of an srun job reads MPI_APPNUM 0: the
 # job must end at once with the message, not hang.
 # (The MPI settings of lib.sh reach the job: sbatch passes the environment on.)
 mkdir ../noapp && cd ../noapp

@@ -3,8 +3,9 @@
 # tests that submit through sbatch (slurm.sh). Everything lives in one
 # directory: munge key and socket, slurm.conf, state, spool, logs. The
 # daemons run as root (SlurmUser=root) with proctrack/linuxproc and no
-# cgroups, on free ports, so that they need nothing from the host's /etc
-# and do not meet another test's cluster.
+# cgroups, on free ports and the loopback address, so that they need
+# nothing from the host's /etc (not even a resolvable host name) and do not
+# meet another test's cluster.
 #
 #   slurm_start DIR   start munged, slurmctld and slurmd; wait for the node
 #   slurm_stop        stop all three (safe to call twice, and from a trap)
@@ -58,7 +59,7 @@ slurm_start() {
 
   cat >"$SLURM_DIR/slurm.conf" <<EOF
 ClusterName=pbmstest
-SlurmctldHost=$node
+SlurmctldHost=$node(127.0.0.1)
 SlurmUser=root
 SlurmdUser=root
 SlurmctldPort=$ctld_port
@@ -83,7 +84,7 @@ SlurmdParameters=config_overrides
 MpiDefault=none
 ReturnToService=2
 SchedulerType=sched/builtin
-NodeName=$node CPUs=$cpus RealMemory=$mem State=UNKNOWN
+NodeName=$node NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem State=UNKNOWN
 PartitionName=test Nodes=$node Default=YES MaxTime=INFINITE State=UP
 EOF
   export SLURM_CONF="$SLURM_DIR/slurm.conf"
