@@ -12,6 +12,7 @@
 #include "engine/concurrent_dpd_side.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
+#include "kernels/periodic_wrap.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
@@ -139,6 +140,10 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   const YAML::Node material = ctx.material(p["material"].as<std::string>());
   DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
+  // A state from an earlier stage may lie a little outside the box on a
+  // periodic axis (positions wrap at list builds only); the regions see it
+  // inside.
+  wrap_periodic_axes(model.particles, model.box, model.particles.size());
   SplitBody body = split_body(model.particles, cp);
   const double reach = std::max(model.pair->cutoff(), model.settings.friction.cutoff);
   const grid::NodeBox band = interface_band(body, cp, reach);
@@ -201,6 +206,7 @@ void ConcurrentStage::run(StageContext& ctx) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   auto& r = ctx.results();
+  r.attributes["interface"] = p["interface"].as<std::string>();
   r.add_scalar("dpd_particles", dpd_count, "1");
   r.add_scalar("mpm_points", mpm_count, "1");
   r.add_scalar("dpd_temperature", engine.thermo(false).temperature, "K");
