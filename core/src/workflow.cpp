@@ -95,7 +95,9 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
                  "One stage");
   stage.discriminated_by("kind");
   for (const auto& d : drivers) {
-    for (const auto& s : d.stage_kinds) stage.variant(s.kind, s.params, s.doc);
+    for (const auto& s : d.stage_kinds) {
+      if (!s.internal) stage.variant(s.kind, s.params, s.doc);
+    }
   }
   return Param::map(
       "workflow",
