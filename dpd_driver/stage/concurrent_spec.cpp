@@ -118,6 +118,17 @@ config::StageKindSpec ConcurrentStage::spec() {
           .def(std::string("seed")));
   s.params.push_back(continuum());
   s.params.push_back(wave());
+  s.params.push_back(Param::map(
+      "tension",
+      {Param::identifier("left_grip", "The rigid group pulled towards -axis").require(),
+       Param::identifier("right_grip", "The rigid group pulled towards +axis").require(),
+       Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
+       Param::real("fit_strain", Dimension::kNone, "Upper end of the linear fit for E")
+           .def(0.05)
+           .above(0)},
+      "A tension test: stress is the force holding the grips (rigid or frozen groups of either "
+      "part) over the body's initial cross-section, strain the change of the grips' separation "
+      "over the body's initial length"));
   s.params.push_back(Param::integer("profile_every", "Steps between displacement profiles; 0: none")
                          .def(0)
                          .at_least(0));
@@ -132,6 +143,10 @@ config::StageKindSpec ConcurrentStage::spec() {
        "Interface opening at the end (wave.opening)"},
       {"max_interface_opening", OutputSpec::Shape::kScalar, "Å", "Its largest value"},
       {"steps_per_second", OutputSpec::Shape::kScalar, "1/s", "Speed of the run"},
+      {"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
+       "Slope of stress against strain up to tension.fit_strain"},
+      {"max_stress", OutputSpec::Shape::kScalar, "GPa", "Largest grip stress (tension)"},
+      {"tension_curve", OutputSpec::Shape::kTable, "", "Strain and grip stress (tension)"},
       {"dpd_ledger", OutputSpec::Shape::kTable, "", "DPD kinetic energy and momentum"},
       {"mpm_ledger", OutputSpec::Shape::kTable, "", "MPM kinetic and stored energy and momentum"},
   };

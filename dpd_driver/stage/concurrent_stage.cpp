@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -129,6 +130,77 @@ struct DpdView {
   }
 };
 
+// The body's extent along an axis, outermost sites plus half a plane
+// spacing on each side (an fcc crystal of n cells spans n a).
+double body_extent(const DpdParticles& all, int axis, double plane) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& x : all.x) {
+    lo = std::min(lo, x[static_cast<std::size_t>(axis)]);
+    hi = std::max(hi, x[static_cast<std::size_t>(axis)]);
+  }
+  return hi - lo + plane;
+}
+
+// Grip stress against strain, both grips held at their velocities.
+struct TensionSeries {
+  coupling::TensionProbe probe;
+  std::uint32_t left = 0, right = 0;
+  double pull_rate = 0.0;  // Å/ps, the grips' separation speed
+  double length = 0.0, area = 0.0;
+  std::vector<double> strain, stress, grip_stress;  // 1, GPa, GPa
+
+  TensionSeries(const coupling::TensionProbe& t, const DpdModel& m, const DpdParticles& all,
+                double plane)
+      : probe(t), left(m.group_mask(t.left_grip)), right(m.group_mask(t.right_grip)) {
+    const auto a = static_cast<std::size_t>(t.axis);
+    for (const auto& g : m.group_motions) {
+      if (g.mask == left) pull_rate -= g.velocity[a];
+      if (g.mask == right) pull_rate += g.velocity[a];
+    }
+    length = body_extent(all, t.axis, plane);
+    area = 1.0;
+    for (int b = 0; b < 3; ++b) {
+      if (b != t.axis) area *= body_extent(all, b, plane);
+    }
+  }
+  // The body's mean axial stress from the DPD part's conservative virial
+  // and the MPM part's sum of stress times volume (both eV), over the
+  // initial cross-section times the current length, as dpd_run's tension
+  // measures it; and the grips' holding forces (each part's plus the
+  // other's) over the initial cross-section.
+  void add(double t, double dpd_virial, double mpm_stress_volume, double f_left, double f_right) {
+    const double e = pull_rate * t / length;
+    constexpr double kGPa = units::kBarPerEvPerA3 / units::kBarPerGPa;  // eV/Å^3 to GPa
+    strain.push_back(e);
+    stress.push_back((mpm_stress_volume - dpd_virial) / (area * length * (1.0 + e)) * kGPa);
+    grip_stress.push_back(0.5 * (f_right - f_left) / area * kGPa);
+  }
+  void report(StageResults& r) const {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+    for (std::size_t k = 0; k < strain.size(); ++k) {
+      if (strain[k] > probe.fit_strain) continue;
+      sx += strain[k];
+      sy += stress[k];
+      sxx += strain[k] * strain[k];
+      sxy += strain[k] * stress[k];
+      n += 1;
+    }
+    r.add_column("tension_curve", "strain", "1", strain);
+    r.add_column("tension_curve", "stress", "GPa", stress);
+    r.add_column("tension_curve", "grip_stress", "GPa", grip_stress);
+    if (n >= 3) r.add_scalar("youngs_modulus", (n * sxy - sx * sy) / (n * sxx - sx * sx), "GPa");
+    if (!stress.empty()) {
+      r.add_scalar("max_stress", *std::max_element(stress.begin(), stress.end()), "GPa");
+    }
+  }
+};
+
+std::vector<std::uint32_t> motion_masks(const DpdModel& m) {
+  std::vector<std::uint32_t> out;
+  for (const auto& g : m.group_motions) out.push_back(g.mask);
+  return out;
+}
+
 }  // namespace
 
 void ConcurrentStage::run(StageContext& ctx) {
@@ -144,6 +216,9 @@ void ConcurrentStage::run(StageContext& ctx) {
   // periodic axis (positions wrap at list builds only); the regions see it
   // inside.
   wrap_periodic_axes(model.particles, model.box, model.particles.size());
+  const double plane = 0.5 * material["lattice_constant"].as<double>();
+  std::optional<TensionSeries> tension;
+  if (cp.tension) tension.emplace(*cp.tension, model, model.particles, plane);
   SplitBody body = split_body(model.particles, cp);
   const double reach = std::max(model.pair->cutoff(), model.settings.friction.cutoff);
   const grid::NodeBox band = interface_band(body, cp, reach);
@@ -185,6 +260,17 @@ void ConcurrentStage::run(StageContext& ctx) {
     }
     if (n == 0) p0 = total;
     for (std::size_t a = 0; a < 3; ++a) worst_dp = std::max(worst_dp, std::abs(total[a] - p0[a]));
+    if (tension) {
+      const auto& reactions = grid.solver().point_velocity_reactions();
+      const auto masks = motion_masks(model);
+      const int a = tension->probe.axis;
+      double f[2] = {coupling::grip_force(ctx.comm(), reactions, masks, tension->left, a),
+                     coupling::grip_force(ctx.comm(), reactions, masks, tension->right, a)};
+      for (double& x : f) x += coupling::swap_scalar(inter, ctx.comm(), x);
+      const double w = engine.thermo(true).virial[static_cast<std::size_t>(a)];
+      const double sv = coupling::swap_scalar(inter, ctx.comm(), 0.0);
+      tension->add(static_cast<double>(n) * cp.time_step, w, sv, f[0], f[1]);
+    }
     if (cp.opening) {
       const double mine = probes.displacement(cp.opening->first, v);
       opening_t.push_back(static_cast<double>(n) * cp.time_step);
@@ -229,6 +315,7 @@ void ConcurrentStage::run(StageContext& ctx) {
     r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
   }
   probes.report(r, "dpd");
+  if (tension) tension->report(r);
   const auto& prof = link.nodal_profile();
   r.add_scalar("nodal_sum_bytes_per_step",
                static_cast<double>(prof.bytes_sent) / std::max<double>(1.0, cp.steps), "1");

@@ -16,6 +16,7 @@
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/error.hpp"
+#include "pbms/units.hpp"
 
 namespace pbms::mpm {
 namespace {
@@ -116,6 +117,25 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     probes.sample(n, v);
     for (std::size_t k = 0; k < 3; ++k) {
       (void)coupling::swap_scalar(inter, ctx.comm(), probes.momentum()[k]);
+    }
+    if (cp.tension) {
+      const MpmModel& m = engine.model();
+      std::vector<std::uint32_t> masks;
+      for (const auto& pv : m.bc.point_velocities) masks.push_back(pv.group_mask);
+      const auto& reactions = engine.solver().point_velocity_reactions();
+      for (const auto& grip : {cp.tension->left_grip, cp.tension->right_grip}) {
+        const double f = coupling::grip_force(ctx.comm(), reactions, masks, m.group_mask(grip),
+                                              cp.tension->axis);
+        (void)coupling::swap_scalar(inter, ctx.comm(), f);
+      }
+      // Σ σ V along the axis, bar Å^3 to eV.
+      const MaterialPoints& q = engine.points();
+      double sv = 0.0;
+      for (std::size_t i = 0; i < q.size(); ++i) {
+        sv += q.volume(i) * q.state[i].stress.voigt[static_cast<std::size_t>(cp.tension->axis)];
+      }
+      MPI_Allreduce(MPI_IN_PLACE, &sv, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());
+      (void)coupling::swap_scalar(inter, ctx.comm(), sv / units::kBarPerEvPerA3);
     }
     if (cp.opening) {
       (void)coupling::swap_scalar(inter, ctx.comm(), probes.displacement(cp.opening->second, v));

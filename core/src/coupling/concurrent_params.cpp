@@ -61,6 +61,10 @@ ConcurrentParams concurrent_params(const YAML::Node& p) {
           std::make_pair(o["dpd_plane"].as<std::string>(), o["mpm_plane"].as<std::string>());
     }
   }
+  if (const YAML::Node t = p["tension"]) {
+    c.tension = TensionProbe{t["left_grip"].as<std::string>(), t["right_grip"].as<std::string>(),
+                             axis_index(t["axis"].as<std::string>()), t["fit_strain"].as<double>()};
+  }
   return c;
 }
 

@@ -19,6 +19,16 @@ void sum_over(MPI_Comm comm, double* v, int n) {
 
 }  // namespace
 
+double grip_force(MPI_Comm comm, const std::vector<Vec3>& reactions,
+                  const std::vector<std::uint32_t>& masks, std::uint32_t grip, int axis) {
+  double f = 0.0;
+  for (std::size_t i = 0; i < reactions.size() && i < masks.size(); ++i) {
+    if ((masks[i] & grip) != 0) f += reactions[i][static_cast<std::size_t>(axis)];
+  }
+  sum_over(comm, &f, 1);
+  return f;
+}
+
 ConcurrentProbes::ConcurrentProbes(MPI_Comm comm, const ConcurrentParams& params,
                                    const std::vector<std::string>& group_names, double bin,
                                    const ParticleView& start)

@@ -34,6 +34,15 @@ struct SpeedProbe {
   std::string near_slab, far_slab;
 };
 
+// A tension test between two rigid grips (groups held at their velocity):
+// stress is the grips' holding force over the body's initial cross-section,
+// strain their separation's change over the body's initial length.
+struct TensionProbe {
+  std::string left_grip, right_grip;
+  int axis = 0;
+  double fit_strain = 0.0;  // upper end of the linear fit for E
+};
+
 struct ConcurrentParams {
   grid::RegularGrid grid{{0.0, 0.0, 0.0}, 1.0, {1, 1, 1}};
   std::array<bool, 3> periodic{false, false, false};
@@ -53,6 +62,7 @@ struct ConcurrentParams {
   // The lattice planes on either side of the interface (groups), whose
   // displacement jump is the interface opening.
   std::optional<std::pair<std::string, std::string>> opening;  // dpd plane, mpm plane
+  std::optional<TensionProbe> tension;
 
   // The solver of a particle at x: the first region holding it, DPD when
   // none does (a flyer outside the body's regions).

@@ -29,6 +29,13 @@ struct ParticleView {
   const std::vector<std::uint32_t>& groups;
 };
 
+// The force along `axis` that held a grip (the prescribed-velocity entries
+// whose groups meet `grip`) in the last step, summed over this part's ranks:
+// `reactions[i]` is entry i's reaction on this rank, `masks[i]` its groups.
+[[nodiscard]] double grip_force(MPI_Comm comm, const std::vector<Vec3>& reactions,
+                                const std::vector<std::uint32_t>& masks, std::uint32_t grip,
+                                int axis);
+
 class ConcurrentProbes {
  public:
   // `group_names[g]` names bit g of the groups; `bin` is the profile bin
