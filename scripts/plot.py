@@ -550,6 +550,32 @@ def plot_concurrent(stage, outdir):
         a2.set_title(f"interface: {stage.attrs.get('interface', '')}")
         a2.grid(alpha=0.3)
         written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_slabs.png"))
+    dl, ml = stage.tables.get("dpd_ledger"), stage.tables.get("mpm_ledger")
+    if dl is not None and ml is not None and dl.has("time", "kinetic_energy"):
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8))
+        t = dl["time"]
+        total = np.zeros_like(t)
+        parts = [(dl, "kinetic_energy", "DPD kinetic"), (dl, "potential_energy", "DPD potential"),
+                 (ml, "kinetic_energy", "MPM kinetic"), (ml, "stored_energy", "MPM stored")]
+        for table, col, name in parts:
+            if col in table.columns and len(table[col]) == len(t):
+                e = table[col] - table[col][0]
+                total = total + e
+                a1.plot(t, e, lw=1.0, label=name)
+        a1.plot(t, total, "k-", lw=1.2, label="sum")
+        a1.set_xlabel(label("time", "ps"))
+        a1.set_ylabel(label("energy change", "eV"))
+        a1.grid(alpha=0.3)
+        a1.legend(fontsize=7)
+        for axis in "xyz":
+            col = f"momentum_{axis}"
+            if col in dl.columns and col in ml.columns and len(ml[col]) == len(t):
+                a2.plot(t, dl[col] + ml[col], lw=1.0, label=f"total {axis}")
+        a2.set_xlabel(label("time", "ps"))
+        a2.set_ylabel(label("momentum", "g/mol Å/ps"))
+        a2.grid(alpha=0.3)
+        a2.legend(fontsize=7)
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_ledger.png"))
     return written
 
 

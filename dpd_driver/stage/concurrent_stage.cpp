@@ -247,12 +247,15 @@ void ConcurrentStage::run(StageContext& ctx) {
   const double body_mass =
       coupling::swap_scalar(inter, ctx.comm(), dpd_count * engine.particles().mass_per_type[0]) +
       dpd_count * engine.particles().mass_per_type[0];
-  std::vector<double> opening_t, opening;
+  std::vector<double> opening_t, opening, potential;
   std::array<double, 3> p0{};
   double worst_dp = 0.0;
   auto sample = [&](std::int64_t n) {
     const auto v = view.view(engine);
     probes.sample(n, v);
+    // DPD pairs, and half of each pair with an MPM point (the other half
+    // would be the MPM side's; its continuum energy is the stored energy).
+    potential.push_back(engine.thermo(true).potential);
     std::array<double, 3> total{};
     for (std::size_t a = 0; a < 3; ++a) {
       total[a] =
@@ -315,6 +318,7 @@ void ConcurrentStage::run(StageContext& ctx) {
     r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
   }
   probes.report(r, "dpd");
+  r.add_column("dpd_ledger", "potential_energy", "eV", potential);
   if (tension) tension->report(r);
   const auto& prof = link.nodal_profile();
   r.add_scalar("nodal_sum_bytes_per_step",
