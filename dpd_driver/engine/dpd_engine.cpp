@@ -91,6 +91,17 @@ void DpdEngine::rebuild() {
   }
 }
 
+void DpdEngine::decompose_as(const grid::GridPartition& partition) {
+  domain_ = DomainDecomposition(comm(), domain_.box(),
+                                interaction_cutoff(*pair_, settings_) + settings_.skin, partition);
+  particles_.truncate(owned_);
+  wrap_periodic_axes(particles_, domain_.box(), owned_);
+  if (domain_.size() > 1) redistribute_particles(domain_, particles_);
+  owned_ = particles_.size();
+  rebuild();
+  compute_forces(Tally::kForcesOnly);
+}
+
 void DpdEngine::update_neighbours() {
   double moved = list_.max_displacement_squared(particles_);
   if (domain_.size() > 1) {

@@ -79,6 +79,13 @@ class DpdEngine {
   // Ghosts follow their owners, or when a particle moved more than half
   // the skin: wrap, migrate, new ghosts and neighbour list.
   void update_neighbours();
+  // Wrap, migrate, ghosts and list now, however little the particles
+  // moved: the grid model's ranks must own exactly their cells' particles.
+  void rebuild_neighbours() { rebuild(); }
+  // Takes the sub-boxes of `partition`'s cells (the grid model): every
+  // particle to its new owner, then ghosts, list and forces anew.
+  // Collective; throws as DomainDecomposition's partition constructor.
+  void decompose_as(const grid::GridPartition& partition);
   // The step count moves on (it keys the pair noise) for a scheme that
   // moved the particles itself (DpdGridStep).
   void count_step() { ++step_; }

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "cu_cg_morse.hpp"
 #include "engine/dpd_engine.hpp"
@@ -95,6 +97,50 @@ TEST(DpdGridStep, ApproachesDpdOnlyAsTheCellsShrink) {
   std::printf("rms deviation from DPD-only after 50 steps: h = a/2: %.4f Å, h = a/4: %.4f Å\n",
               deviation[0], deviation[1]);
   EXPECT_LT(deviation[1], deviation[0]);
+}
+
+// On several ranks the grid step rebuilds (wrap, migration, ghosts, list)
+// whenever a particle has left its rank's cells, not only when one has
+// moved half the skin. On one rank rebuilding every step must change
+// nothing beyond round-off (the list order). The test also shows how often
+// the one-rank path rebuilds anyway (the grid pass wraps positions on
+// periodic axes, and a list built before a wrap has wrong periodic shifts;
+// this lattice has sites on the periodic faces) and what a rebuild costs
+// against a step.
+TEST(DpdGridStep, RebuildingEveryStepChangesOnlyRoundOff) {
+  const double cutoff = cu_cg_morse_parameters().cutoff;
+  constexpr int kSteps = 100;
+  auto lazy = crystal(8, cutoff);
+  auto eager = crystal(8, cutoff);
+  DpdGridStep lazy_grid(*lazy, {kLattice / 2.0, 1.0, 4, {}});
+  DpdGridStep eager_grid(*eager, {kLattice / 2.0, 1.0, 4, {}});
+  const long builds_before = lazy->rebuilds();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n = 0; n < kSteps; ++n) lazy_grid.step();
+  const auto t1 = std::chrono::steady_clock::now();
+  const long builds = lazy->rebuilds() - builds_before;
+  for (int n = 0; n < kSteps; ++n) lazy->rebuild_neighbours();
+  const auto t2 = std::chrono::steady_clock::now();
+  for (int n = 0; n < kSteps; ++n) {
+    eager->rebuild_neighbours();
+    eager_grid.step();
+  }
+  double dx = 0.0;
+  const auto& box = lazy->domain().box();
+  for (std::size_t i = 0; i < lazy->owned(); ++i) {
+    const auto& x = lazy->particles().x[i];
+    const auto& y = eager->particles().x[i];
+    const auto d = box.minimum_image({x[0] - y[0], x[1] - y[1], x[2] - y[2]});
+    for (int a = 0; a < 3; ++a) dx = std::max(dx, std::abs(d[a]));
+  }
+  const double us = 1e6 / (kSteps * static_cast<double>(lazy->owned()));
+  const double step = std::chrono::duration<double>(t1 - t0).count() * us;
+  const double rebuild = std::chrono::duration<double>(t2 - t1).count() * us;
+  std::printf(
+      "%zu particles, %d steps: %ld list builds; µs a particle: %.3f a step, %.3f a rebuild; "
+      "every step rebuilt vs lazily: max |dx| %.1e Å\n",
+      lazy->owned(), kSteps, builds, step, rebuild, dx);
+  EXPECT_LT(dx, 1e-11 * 8 * kLattice);
 }
 
 TEST(DpdGridStep, RefusesCellsNotBelowTheCutoffAndBoxesOfPartCells) {
