@@ -20,10 +20,14 @@
 // On several ranks the engine takes the grid partition's split
 // (DomainDecomposition from a GridPartition) and rebuilds whenever a
 // particle has left its rank's cells, so that at each grid pass every
-// particle lies in its own rank's cells: each
-// rank's solver works on partition().nodes_of(rank), and the nodal sums
-// over ranks are the same HaloSum an MPM run uses (GridPatch::sum_shared).
-// Rigid groups sum their mass and force over all ranks.
+// particle lies in its own rank's cells: each rank's solver works on
+// partition().nodes_of(rank), and the nodal sums over ranks are the
+// HaloSum an MPM run uses (GridPatch::sum_shared), which also folds the
+// periodic faces on one rank. Rigid groups sum mass and force over ranks.
+// Particles exactly on a node plane are the one place where ranks may
+// differ by more than round-off: a rigid group's particle there gives the
+// node beyond a weight of round-off size, which marks the node rigid or
+// not depending on how each rank's patch rounds.
 #pragma once
 
 #include <memory>
