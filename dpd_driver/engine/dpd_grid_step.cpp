@@ -147,7 +147,7 @@ void DpdGridStep::load_points() {
   forces_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     points_.id[i] = p.id[i];
-    points_.x[i] = p.x[i];
+    points_.x[i] = solver_->grid().wrapped(p.x[i], solver_->patch().periodic);
     points_.v[i] = p.v[i];
     points_.mass[i] = p.mass(i);
     points_.groups[i] = p.group_mask[i];
@@ -156,19 +156,26 @@ void DpdGridStep::load_points() {
   bc_.point_forces = forces_;
 }
 
-// The grid pass wraps positions on periodic axes; a jump of more than half
-// the box is a crossing, which the particle's image count records.
+// The solver takes positions wrapped into the grid and wraps them again
+// as it moves them. The engine keeps its own continuous, as velocity
+// Verlet's drift does, and wraps them (counting images) when it rebuilds:
+// a wrap here would make every step with a particle crossing a periodic
+// face a rebuild, since the list's periodic shifts predate it.
 void DpdGridStep::store_points() {
   DpdParticles& p = engine_.particles();
   const OrthogonalBox& box = engine_.domain().box();
+  const grid::RegularGrid& g = solver_->grid();
   for (std::size_t i = 0; i < engine_.owned(); ++i) {
-    for (int a = 0; a < 3; ++a) {
-      if (!box.periodic[static_cast<std::size_t>(a)]) continue;
-      const double jump = points_.x[i][a] - p.x[i][a];
-      if (jump < -0.5 * box.length(a)) ++p.image[i][a];
-      if (jump > 0.5 * box.length(a)) --p.image[i][a];
+    const mpm::Vec3 before = g.wrapped(p.x[i], box.periodic);
+    for (std::size_t a = 0; a < 3; ++a) {
+      double moved = points_.x[i][a] - before[a];
+      if (box.periodic[a]) {
+        const double length = box.length(static_cast<int>(a));
+        if (moved > 0.5 * length) moved -= length;
+        if (moved < -0.5 * length) moved += length;
+      }
+      p.x[i][a] += moved;
     }
-    p.x[i] = points_.x[i];
     p.v[i] = points_.v[i];
   }
 }
