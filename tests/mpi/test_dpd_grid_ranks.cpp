@@ -24,6 +24,7 @@
 #include "engine/dpd_grid_step.hpp"
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/maxwell_boltzmann_velocities.hpp"
+#include "pbms/error.hpp"
 
 using namespace pbms;
 using namespace pbms::dpd;
@@ -183,4 +184,26 @@ TEST(DpdGridRanks, RigidFlyerMatchesOneRank) {
 // and carries every particle 6 Å, a third of a box.
 TEST(DpdGridRanks, VelocityVerletMatchesOneRank) {
   expect_same_as_one_rank({false, false, false, -3.0}, "DPD-only, periodic, drifting");
+}
+
+// Ghosts travel one hop, so a box that passes them on must be at least
+// cutoff + skin (11 Å) thick. A crystal of 5 x 4 x 4 cells (36.15 Å
+// along x) is thick enough for the engine's own 3 boxes (12.05 Å), but
+// the grid partition splits its 10 grid cells along x into 3, 3 and 4
+// (10.8 Å), which every rank refuses alike; 2 and 4 ranks get 4 or 5
+// cells (14.5 or 18.1 Å) on every split axis.
+TEST(DpdGridRanks, RefusesBoxesThinnerThanTheReach) {
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  FccCrystal crystal = fcc_crystal(5, 4, 4, kLattice, kMass);
+  DpdIntegratorSettings s;
+  s.scheme = DpdScheme::kNve;
+  DpdEngine engine(MPI_COMM_WORLD, crystal.box, cu_cg_morse(), s, std::move(crystal.particles));
+  DpdGridSettings grid_settings;
+  grid_settings.cell_size = kLattice / 2.0;
+  if (ranks == 3) {
+    EXPECT_THROW(DpdGridStep(engine, grid_settings), Error);
+  } else {
+    EXPECT_NO_THROW(DpdGridStep(engine, grid_settings));
+  }
 }

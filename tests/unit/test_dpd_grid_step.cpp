@@ -150,3 +150,29 @@ TEST(DpdGridStep, RefusesCellsNotBelowTheCutoffAndBoxesOfPartCells) {
   EXPECT_THROW(DpdGridStep(*engine, {cutoff + 1.0, 1.0, 4, {}}), Error);
   EXPECT_THROW(DpdGridStep(*engine, {3.0, 1.0, 4, {}}), Error);  // 28.92 Å / 3 Å
 }
+
+// A concurrent run hands the grid step its shared grid. The same grid as
+// the step's own gives the same steps; a grid that does not span a
+// periodic axis of the box is refused (the engine and the solver would
+// wrap into different intervals).
+TEST(DpdGridStep, TakesAGivenGridThatSpansThePeriodicAxes) {
+  const double cutoff = cu_cg_morse_parameters().cutoff;
+  auto own = crystal(4, cutoff);
+  auto given = crystal(4, cutoff);
+  const double h = kLattice / 2.0;
+  DpdGridStep own_grid(*own, {h, 1.0, 4, {}});
+  mpm::GridPatch patch = mpm::GridPatch::whole(own_grid.grid());
+  patch.periodic = {true, true, true};
+  DpdGridStep given_grid(*given, {h, 1.0, 4, {}}, patch);
+  EXPECT_EQ(given_grid.partition().ranks(), 1);
+  for (int n = 0; n < 20; ++n) {
+    own_grid.step();
+    given_grid.step();
+  }
+  for (std::size_t i = 0; i < own->owned(); ++i) {
+    EXPECT_EQ(own->particles().x[i], given->particles().x[i]) << i;
+  }
+  mpm::GridPatch shifted = patch;
+  shifted.domain = grid::RegularGrid({-h / 2.0, 0.0, 0.0}, h, own_grid.grid().cells());
+  EXPECT_THROW(DpdGridStep(*given, {h, 1.0, 4, {}}, shifted), Error);
+}
