@@ -266,19 +266,37 @@ class Daemon {
       }
     }
     const auto request = scheduler_.submit(stage.program, rs);
+    // Partners (the MPM part of a concurrent stage) start at the same time:
+    // their parts exchange data with the main one rank to rank.
+    std::map<protocol::RequestId, std::optional<protocol::StageDone>> partners;
+    for (const auto& partner : spec_of(stage.kind).partners) {
+      protocol::RunStage prs = rs;
+      prs.kind = partner.kind;
+      partners[scheduler_.submit(partner.program, prs)] = std::nullopt;
+    }
 
     StageProgress progress(*this, stage.name, "step");
-    const Answer answer = scheduler_.wait_for(request, [&](const Answer& a) {
+    // Any failed part ends the run: the other parts would wait for it.
+    auto on_answer = [&](const Answer& a) {
       if (const auto* p = std::get_if<protocol::Progress>(&a)) {
-        progress.show(p->step, p->total_steps, p->sim_time_ps, p->phase);
+        if (p->request == request) progress.show(p->step, p->total_steps, p->sim_time_ps, p->phase);
+      } else if (const auto* f = std::get_if<protocol::StageFailed>(&a)) {
+        fail(f->program, f->rank, f->stage, f->step, f->reason);
+      } else if (const auto* d = std::get_if<protocol::StageDone>(&a)) {
+        if (partners.count(d->request) != 0) partners[d->request] = *d;
       }
-    });
+    };
+    const Answer answer = scheduler_.wait_for(request, on_answer);
     // A workflow stage without its result leaves later stages without their
     // inputs: it ends the run, though the driver could go on.
     if (const auto* f = std::get_if<protocol::StageFailed>(&answer)) {
       fail(f->program, f->rank, f->stage, f->step, f->reason);
     }
     auto done = std::get<protocol::StageDone>(answer);
+    for (auto& [id, part] : partners) {
+      if (!part) on_answer(scheduler_.wait_for(id, on_answer));
+      merge_part(done.results, *part);
+    }
     console_.end_progress();
     if (identity) cache.store(*identity, done, record_->dir());
     log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
@@ -309,6 +327,23 @@ class Daemon {
     done.results = std::move(ctx.results());
     log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
     finish_stage(stage, std::move(done));
+  }
+
+  const config::StageKindSpec& spec_of(const std::string& kind) const {
+    for (const auto& d : drivers_) {
+      if (const auto* s = d.stage_kind(kind)) return *s;
+    }
+    throw Error(fmt::format("no driver declares stage kind '{}'", kind));
+  }
+
+  // A partner's scalars, tables and files join the main part's; the kinds
+  // keep their key names apart.
+  static void merge_part(StageResults& into, const protocol::StageDone& part) {
+    const StageResults& r = part.results;
+    into.scalars.insert(into.scalars.end(), r.scalars.begin(), r.scalars.end());
+    into.columns.insert(into.columns.end(), r.columns.begin(), r.columns.end());
+    into.files.insert(into.files.end(), r.files.begin(), r.files.end());
+    into.attributes.insert(r.attributes.begin(), r.attributes.end());
   }
 
   void finish_stage(const config::StageConfig& stage, protocol::StageDone done) {

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "pbms/coupling/concurrent_check.hpp"
 #include "pbms/error.hpp"
 #include "stages/coupler_stage.hpp"
 
@@ -35,6 +36,13 @@ std::vector<config::DriverDescription> discover_drivers(const std::filesystem::p
       throw Error(fmt::format("'{} --describe' failed: {}", p.filename().string(), text));
     }
     out.push_back(config::driver_from_yaml(YAML::Load(text)));
+  }
+  // Checks that span programs do not travel in --describe; the coupler,
+  // which sees every program's side, holds them.
+  for (auto& d : out) {
+    for (auto& k : d.stage_kinds) {
+      if (!k.partners.empty() && k.kind == "concurrent") k.check = coupling::check_concurrent_stage;
+    }
   }
   if (out.empty()) throw Error(fmt::format("no drivers found in '{}'", dir.string()));
   out.push_back(coupler_description());

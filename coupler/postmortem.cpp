@@ -96,9 +96,12 @@ int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
   if (status == "failed") {
     const auto f = manifest["failure"];
     std::cerr << fmt::format(
-        "pbms: run failed: {} rank {}{}: {}\n       details: {}\n",
+        "pbms: run failed: {} rank {}{}{}: {}\n       details: {}\n",
         f["program"].as<std::string>("?"), f["rank"].as<int>(-1),
         f["stage"] ? fmt::format(" in stage '{}'", f["stage"].as<std::string>()) : "",
+        f["step"] && f["step"].as<std::int64_t>(-1) >= 0
+            ? fmt::format(" at step {}", f["step"].as<std::int64_t>())
+            : "",
         f["message"].as<std::string>(""), (run_dir / "log.txt").string());
     return mpirun_exit_code == 0 ? 1 : mpirun_exit_code;
   }

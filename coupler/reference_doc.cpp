@@ -88,7 +88,11 @@ std::string config_reference_markdown(const std::vector<config::DriverDescriptio
   table(out, ptrs(stage.fields));
   for (const auto& d : drivers) {
     for (const auto& s : d.stage_kinds) {
+      if (s.internal) continue;  // started by the coupler, never written
       out += fmt::format("### stage kind `{}` ({})\n\n{}.\n\n", s.kind, s.program, s.doc);
+      for (const auto& partner : s.partners) {
+        out += fmt::format("Runs together with {}'s part ({}).\n\n", partner.program, partner.kind);
+      }
       table(out, ptrs(s.params));
       if (!s.outputs.empty()) {
         out +=

@@ -1,6 +1,7 @@
 // dpd_driver: the dissipative particle dynamics engine.
 
 #include "pbms/driver/stage_kind.hpp"
+#include "stage/concurrent_stage.hpp"
 #include "stage/dpd_properties_stages.hpp"
 #include "stage/dpd_run.hpp"
 
@@ -10,6 +11,7 @@ int main(int argc, char** argv) {
   registry.add<pbms::dpd::DpdEquilibrateStage>();
   registry.add<pbms::dpd::DpdElasticStage>();
   registry.add<pbms::dpd::DpdIsothermStage>();
+  registry.add<pbms::dpd::ConcurrentStage>();
   pbms::DriverInfo info{"dpd_driver", "dpd", {}};
   return pbms::run_driver(argc, argv, info, registry);
 }

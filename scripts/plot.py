@@ -507,7 +507,54 @@ def plot_fit(stage, outdir):
     return written
 
 
+def plot_concurrent(stage, outdir):
+    """concurrent: each part's displacement profile along the wave at
+    several times (seed fig 5.9), DPD solid and MPM dashed in one colour per
+    time; the slabs of both parts; the interface opening."""
+    written = []
+    dpd, mpm = stage.tables.get("dpd_profiles"), stage.tables.get("mpm_profiles")
+    if dpd is not None or mpm is not None:
+        fig, ax = plt.subplots(figsize=(7.5, 4.2))
+        times = [c for c in (dpd or mpm).order if c.startswith("t=")]
+        for k, t in enumerate(times):
+            for table, style, part in ((dpd, "-", "DPD"), (mpm, "--", "MPM")):
+                if table is None or t not in table.columns:
+                    continue
+                colour = plt.cm.viridis(k / max(1, len(times) - 1))
+                ax.plot(table["position"], table[t], style, color=colour, lw=1.0,
+                        label=f"{t} ps" if part == "DPD" or dpd is None else None)
+        ax.set_xlabel(label("initial position", "Å"))
+        ax.set_ylabel(label("displacement", "Å"))
+        ax.set_title(f"{stage.name}: displacement profiles (DPD solid, MPM dashed)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, ncol=2)
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_profiles.png"))
+    slabs = [(stage.tables.get(n), n) for n in ("dpd_slabs", "mpm_slabs")]
+    opening = stage.tables.get("interface")
+    if any(t is not None for t, _ in slabs) or opening is not None:
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8))
+        for t, name in slabs:
+            if t is None:
+                continue
+            for col in t.order:
+                if col != "time":
+                    a1.plot(t["time"], t[col], lw=1.0, label=f"{col} ({name.split('_')[0]})")
+        a1.set_xlabel(label("time", "ps"))
+        a1.set_ylabel(label("slab displacement", "Å"))
+        a1.grid(alpha=0.3)
+        a1.legend(fontsize=7)
+        if opening is not None:
+            a2.plot(opening["time"], opening["opening"] - opening["opening"][0], "k-", lw=1.0)
+        a2.set_xlabel(label("time", "ps"))
+        a2.set_ylabel(label("interface opening", "Å"))
+        a2.set_title(f"interface: {stage.attrs.get('interface', '')}")
+        a2.grid(alpha=0.3)
+        written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_slabs.png"))
+    return written
+
+
 PLOTTERS = {
+    "concurrent": plot_concurrent,
     "mpm_run": plot_mpm_run,
     "md_isotherm": plot_isotherm,
     "md_tension": plot_tension,

@@ -1,7 +1,11 @@
 #include "pbms/mpi/mpmd.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <thread>
 
@@ -10,37 +14,80 @@
 namespace pbms::mpi {
 namespace {
 constexpr int kMessageTag = 77;
-}
 
-MpmdWorld MpmdWorld::join(Role role) {
-  MpmdWorld w;
+// Which app (program) of the job this process belongs to. mpirun numbers the
+// programs of its command line and tells each process through MPI_APPNUM.
+// srun --multi-prog does not: under Slurm's PMIx every process reads
+// MPI_APPNUM 0. So a launcher may say it instead, in the environment variable
+// PBMS_APP (a number per program; `./pbms run --slurm` writes it into the
+// multi-prog file), and that takes precedence. Without it, the split is
+// MPI_APPNUM's, as it always was.
+int app_number() {
+  if (const char* env = std::getenv("PBMS_APP"); env != nullptr && *env != '\0') {
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(env, &end, 10);
+    if (*end != '\0' || errno != 0 || v < 0 || v > 255) {
+      throw Error(fmt::format("PBMS_APP='{}' is not a program number (0 to 255)", env));
+    }
+    return static_cast<int>(v);
+  }
   int* appnum_attr = nullptr;
   int found = 0;
   MPI_Comm_get_attr(MPI_COMM_WORLD, MPI_APPNUM, &appnum_attr, &found);
-  w.appnum_ = found && appnum_attr ? *appnum_attr : 0;
-  MPI_Comm local = MPI_COMM_NULL;
+  return found && appnum_attr ? *appnum_attr : 0;
+}
+
+// A number for this process's executable (FNV-1a of its file name), so that
+// two different programs given one app number are noticed.
+int program_id() {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec).filename().string();
+  uint32_t h = 2166136261u;
+  for (const unsigned char c : exe) h = (h ^ c) * 16777619u;
+  return static_cast<int>(h & 0x7fffffffu);
+}
+}  // namespace
+
+MpmdWorld MpmdWorld::join(Role role) {
+  MpmdWorld w;
+  w.appnum_ = app_number();
   int world_rank = 0, world_size = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &world_size);
-  check(MPI_Comm_split(MPI_COMM_WORLD, w.appnum_, world_rank, &local), "MPI_Comm_split");
-  w.local_ = Comm(local);
 
-  const int mine[2] = {w.appnum_, static_cast<int>(role)};
-  std::vector<int> all(2 * static_cast<size_t>(world_size));
-  check(MPI_Allgather(mine, 2, MPI_INT, all.data(), 2, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+  // Everyone's app number, role and program first, so that a launch that
+  // lumps different programs into one app fails here, on every rank alike,
+  // with a message, instead of hanging in a handshake later.
+  constexpr size_t kFields = 3;
+  const int mine[kFields] = {w.appnum_, static_cast<int>(role), program_id()};
+  std::vector<int> all(kFields * static_cast<size_t>(world_size));
+  check(MPI_Allgather(mine, kFields, MPI_INT, all.data(), kFields, MPI_INT, MPI_COMM_WORLD),
+        "MPI_Allgather");
+  const auto field = [&](int r, size_t f) { return all[kFields * static_cast<size_t>(r) + f]; };
   std::map<int, App> apps;
   for (int r = 0; r < world_size; ++r) {
-    const int a = all[2 * static_cast<size_t>(r)];
+    const int a = field(r, 0);
     auto [it, inserted] = apps.try_emplace(a);
     App& app = it->second;
     if (inserted) {
       app.appnum = a;
-      app.role = static_cast<Role>(all[2 * static_cast<size_t>(r) + 1]);
+      app.role = static_cast<Role>(field(r, 1));
       app.leader = r;
       app.first_world_rank = r;
+    } else if (field(app.leader, 1) != field(r, 1) || field(app.leader, 2) != field(r, 2)) {
+      throw Error(fmt::format(
+          "world ranks {} and {} run different programs but have the same app number {}; "
+          "under srun, where MPI_APPNUM is 0 everywhere, give each program its own PBMS_APP "
+          "(the multi-prog file of ./pbms run --slurm does)",
+          app.leader, r, a));
     }
     ++app.size;
   }
+
+  MPI_Comm local = MPI_COMM_NULL;
+  check(MPI_Comm_split(MPI_COMM_WORLD, w.appnum_, world_rank, &local), "MPI_Comm_split");
+  w.local_ = Comm(local);
   for (auto& [a, app] : apps) w.apps_.push_back(app);
   const auto n_couplers = std::count_if(w.apps_.begin(), w.apps_.end(),
                                         [](const App& a) { return a.role == Role::kCoupler; });

@@ -56,6 +56,13 @@ YAML::Node to_yaml(const StageKindSpec& s) {
   n["material_kinds"] = s.material_kinds;
   if (s.cacheable) n["cacheable"] = true;
   if (!s.uses.empty()) n["uses"] = s.uses;
+  for (const auto& p : s.partners) {
+    YAML::Node pn;
+    pn["program"] = p.program;
+    pn["kind"] = p.kind;
+    n["partners"].push_back(pn);
+  }
+  if (s.internal) n["internal"] = true;
   return n;
 }
 
@@ -76,6 +83,10 @@ StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
   if (n["material_kinds"]) s.material_kinds = n["material_kinds"].as<std::vector<std::string>>();
   s.cacheable = n["cacheable"] && n["cacheable"].as<bool>();
   if (n["uses"]) s.uses = n["uses"].as<std::vector<std::string>>();
+  for (const auto& pn : n["partners"]) {
+    s.partners.push_back({pn["program"].as<std::string>(), pn["kind"].as<std::string>()});
+  }
+  s.internal = n["internal"] && n["internal"].as<bool>();
   return s;
 }
 

@@ -14,7 +14,9 @@ namespace {
 std::vector<std::string> all_kinds(const std::vector<DriverDescription>& drivers) {
   std::vector<std::string> out;
   for (const auto& d : drivers) {
-    for (const auto& s : d.stage_kinds) out.push_back(s.kind);
+    for (const auto& s : d.stage_kinds) {
+      if (!s.internal) out.push_back(s.kind);
+    }
   }
   return out;
 }
@@ -93,7 +95,9 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
                  "One stage");
   stage.discriminated_by("kind");
   for (const auto& d : drivers) {
-    for (const auto& s : d.stage_kinds) stage.variant(s.kind, s.params, s.doc);
+    for (const auto& s : d.stage_kinds) {
+      if (!s.internal) stage.variant(s.kind, s.params, s.doc);
+    }
   }
   return Param::map(
       "workflow",
@@ -182,6 +186,12 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
                   fmt::format("unknown stage kind '{}': no installed driver declares it "
                               "(declared: {}){}",
                               clipped(kind), fmt::join(kinds, ", "), suggest(kind, kinds)));
+        } else if (spec->internal) {
+          v.error(st["kind"], sp + ".kind",
+                  fmt::format("stage kind '{}' is a part of another kind that the coupler starts "
+                              "itself ({}); a workflow cannot name it",
+                              kind, spec->doc));
+          spec = nullptr;
         }
       }
       stage_names.push_back(name);
@@ -341,6 +351,7 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
     sc.program = stage_specs[i]->program;
     sc.drivers =
         sc.program == kCouplerProgram ? stage_specs[i]->uses : std::vector<std::string>{sc.program};
+    for (const auto& partner : stage_specs[i]->partners) sc.drivers.push_back(partner.program);
     sc.params = resolved["stages"][i];
     sc.line = stages[i].Mark().line + 1;
     wf.stages.push_back(sc);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "engine/particle_migration.hpp"
 #include "kernels/dpd_pair_friction.hpp"
 #include "kernels/pair_noise.hpp"
@@ -78,12 +80,36 @@ void DpdEngine::set_rigid_bodies(const std::vector<std::uint32_t>& masks) {
   body_force_.assign(3 * masks.size(), 0.0);
 }
 
+void DpdEngine::set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v,
+                             const std::vector<std::int64_t>& id, int type) {
+  if (is_shardlow(settings_.scheme)) {
+    throw Error("DPD engine: partner particles need the velocity_verlet or nve scheme");
+  }
+  if (domain_.size() > 1 || pair_->name() == "sutton_chen") {
+    throw Error(fmt::format(
+        "DPD engine: partner particles need a pair style without densities (got {}) on one rank",
+        pair_->name()));
+  }
+  partners_.truncate(0);
+  for (std::size_t k = 0; k < x.size(); ++k) partners_.add(id[k], type, x[k], v[k]);
+  with_partners_ = true;
+}
+
+std::vector<Vec3> DpdEngine::partner_forces() const {
+  const auto begin = particles_.f.begin() + static_cast<std::ptrdiff_t>(partner_begin_);
+  return {begin, begin + static_cast<std::ptrdiff_t>(partners_.size())};
+}
+
 void DpdEngine::rebuild() {
   particles_.truncate(owned_);
   wrap_periodic_axes(particles_, domain_.box(), owned_);
   if (domain_.size() > 1) migrate_particles(domain_, particles_);
   owned_ = particles_.size();
   ghosts_.build(particles_, owned_);
+  partner_begin_ = particles_.size();
+  for (std::size_t k = 0; k < partners_.size(); ++k) {
+    particles_.add(partners_.id[k], partners_.type[k], partners_.x[k], partners_.v[k]);
+  }
   list_.build(particles_, domain_.list_box(), owned_);
   if (sweep_order_) {
     sweep_order_->build(particles_, domain_.list_box(),
@@ -109,7 +135,7 @@ void DpdEngine::update_neighbours() {
                "MPI_Allreduce (neighbour list check)");
   }
   const double half_skin = 0.5 * list_.skin();
-  if (moved > half_skin * half_skin) {
+  if (moved > half_skin * half_skin || with_partners_) {
     rebuild();
   } else {
     ghosts_.forward(particles_);

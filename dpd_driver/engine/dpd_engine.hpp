@@ -66,6 +66,21 @@ class DpdEngine {
   // the groups to the prescribed ones. Throws as set_prescribed_groups.
   void set_rigid_bodies(const std::vector<std::uint32_t>& masks);
 
+  // Points of another program that pair with this engine's particles (the
+  // MPM ghosts of a concurrent run's interface treatment): each step's set,
+  // as particles of `type`, appended after the ghosts before the neighbour
+  // list is built, so that owned particles take pair forces from them
+  // (conservative, dissipative and random, keyed by their ids). They are
+  // never integrated. While a set is given the list is rebuilt at every
+  // update_neighbours, because the set changes from step to step. Throws
+  // pbms::Error for a Shardlow scheme or a many-body pair style (its
+  // densities would need the partners' own neighbours).
+  void set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v,
+                    const std::vector<std::int64_t>& id, int type);
+  // The force each partner took from this rank's particles at the last
+  // compute_forces, in the order given: minus the reaction on it.
+  [[nodiscard]] std::vector<Vec3> partner_forces() const;
+
   // One step of the scheme: for velocity Verlet, half_kick, drift,
   // update_neighbours, compute_forces, half_kick (a Shardlow scheme sweeps
   // the pairs first). A coupling scheme that moves the particles through
@@ -129,6 +144,9 @@ class DpdEngine {
   std::vector<Vec3> scratch_forces_;
   std::unique_ptr<ShardlowPairOrder> sweep_order_;  // Shardlow schemes only
   std::vector<char> touched_;                       // per colour: particles it updated
+  DpdParticles partners_;                           // the partners of this step (x, v, id, type)
+  std::size_t partner_begin_ = 0;                   // their index in particles_
+  bool with_partners_ = false;
 };
 
 }  // namespace pbms::dpd

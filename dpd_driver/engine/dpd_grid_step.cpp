@@ -48,38 +48,37 @@ void allreduce_sum(MPI_Comm comm, double* data, int n) {
 
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
     : engine_(engine), settings_(settings) {
-  init(grid_over(engine.domain().box(), settings));
+  init(grid_over(engine.domain().box(), settings), engine.domain().box().periodic);
 }
 
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings,
-                         const mpm::GridPatch& patch)
+                         const grid::RegularGrid& grid, const std::array<bool, 3>& periodic)
     : engine_(engine), settings_(settings) {
-  const grid::RegularGrid& g = patch.domain;
-  if (std::abs(g.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
+  if (std::abs(grid.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
     throw Error(fmt::format("DPD/MPM grid: the cell size {:g} Å is not the grid's spacing {:g} Å",
-                            settings.cell_size, g.cell_size()));
+                            settings.cell_size, grid.cell_size()));
   }
   // The engine wraps into the box and the solver into the grid: on a
   // periodic axis both must be the same interval.
   const OrthogonalBox& box = engine.domain().box();
   for (std::size_t a = 0; a < 3; ++a) {
-    if (patch.periodic[a] != box.periodic[a]) {
+    if (periodic[a] != box.periodic[a]) {
       throw Error(fmt::format(
           "DPD/MPM grid: the grid and the DPD box differ in periodicity along {}", "xyz"[a]));
     }
     const double tolerance = 1e-9 * box.length(static_cast<int>(a));
-    if (box.periodic[a] && (std::abs(g.origin()[a] - box.lo[a]) > tolerance ||
-                            std::abs(g.upper()[a] - box.hi[a]) > tolerance)) {
+    if (box.periodic[a] && (std::abs(grid.origin()[a] - box.lo[a]) > tolerance ||
+                            std::abs(grid.upper()[a] - box.hi[a]) > tolerance)) {
       throw Error(fmt::format(
           "DPD/MPM grid: along periodic {} the grid spans [{:g}, {:g}] Å, the DPD box [{:g}, "
           "{:g}] Å",
-          "xyz"[a], g.origin()[a], g.upper()[a], box.lo[a], box.hi[a]));
+          "xyz"[a], grid.origin()[a], grid.upper()[a], box.lo[a], box.hi[a]));
     }
   }
-  init(g);
+  init(grid, periodic);
 }
 
-void DpdGridStep::init(const grid::RegularGrid& grid) {
+void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic) {
   const DpdGridSettings& settings = settings_;
   const double cutoff = engine_.settings().friction.cutoff;
   if (engine_.settings().scheme != DpdScheme::kNve && !(settings.cell_size < cutoff)) {
@@ -89,12 +88,12 @@ void DpdGridStep::init(const grid::RegularGrid& grid) {
   }
   const OrthogonalBox& box = engine_.domain().box();
   const int ranks = engine_.domain().size();
-  partition_ = std::make_unique<grid::GridPartition>(grid, box.periodic, ranks);
+  partition_ = std::make_unique<grid::GridPartition>(grid, periodic, ranks);
   if (ranks > 1) engine_.decompose_as(*partition_);
   halo_ = std::make_unique<mpi::HaloSum>(engine_.comm(), *partition_);
   // One rank sums too: a periodic axis's last node layer is the first's
   // image and must hold the whole sum, as in an MPM run.
-  mpm::GridPatch patch{grid, partition_->nodes_of(engine_.domain().rank()), box.periodic, {}};
+  mpm::GridPatch patch{grid, partition_->nodes_of(engine_.domain().rank()), periodic, {}};
   if (!halo_->empty()) {
     patch.sum_shared = [this](double* data, int components, int stride) {
       halo_->sum(data, components, stride);
@@ -258,10 +257,10 @@ void DpdGridStep::finish_step() {
   solver_->update_stress_and_move(points_, bc_, engine_.settings().dt);
   store_points();
   engine_.count_step();
-  // The engine is read between steps (thermo's energy and virial, output):
-  // its ghosts must follow the particles, and its list must not predate a
-  // wrap the grid pass made (the list's periodic shifts would be wrong).
-  refresh_neighbours();
+  // The engine is read between steps (thermo's energy and virial): its
+  // ghosts must follow the particles that moved. One rank has none, and
+  // its list stays valid as the positions stay continuous.
+  if (engine_.domain().size() > 1) engine_.update_neighbours();
 }
 
 }  // namespace pbms::dpd

@@ -68,12 +68,13 @@ class DpdGridStep {
   // cell edge is not below the DPD cutoff (seed §2.4), or when a sub-box
   // that passes ghosts on is thinner than cutoff + skin.
   DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings);
-  // On a given grid (a concurrent run's shared one): patch.domain and
-  // patch.periodic; this rank's nodes and their sums come from the
-  // partition of that grid over the engine's ranks, whatever patch.nodes
-  // says. settings.cell_size must be the grid's spacing, and on each
-  // periodic axis the grid must span the box. Throws as above.
-  DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings, const mpm::GridPatch& patch);
+  // On a given grid (a concurrent run's shared one) with its periodic
+  // axes, which must be the box's; this rank's nodes and their sums come
+  // from the partition of that grid over the engine's ranks.
+  // settings.cell_size must be the grid's spacing, and on each periodic
+  // axis the grid must span the box. Throws as above.
+  DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings, const grid::RegularGrid& grid,
+              const std::array<bool, 3>& periodic);
 
   // One step of the engine's dt: the four phases below in order. Throws
   // pbms::Error naming the particle when one leaves the grid.
@@ -85,7 +86,7 @@ class DpdGridStep {
   void map_to_grid();          // mass, momentum, pair forces to the nodes (s-1, s-2, s-3b)
   void update_and_map_back();  // nodal update, grid to particles, remap (s-4 to s-10)
   void finish_step();          // move with the grid velocity (s-11), step counted, ghosts
-                               // and list follow
+                               // follow
 
   // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
   // update_and_map_back, and the remapped momentum after the latter.
@@ -98,7 +99,7 @@ class DpdGridStep {
   [[nodiscard]] const mpm::MpmSolver& solver() const { return *solver_; }
 
  private:
-  void init(const grid::RegularGrid& grid);
+  void init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic);
   // Points as many as the owned particles, with their state and fields.
   void load_points();
   void store_points();

@@ -219,4 +219,15 @@ DpdModel build_dpd_model(const YAML::Node& p, const YAML::Node& material, std::u
   return m;
 }
 
+// FNV-1a: a stage's noise stream differs from every other stage's of the
+// same run seed, and is the same on every machine.
+std::uint64_t stage_seed(std::uint64_t seed, const std::string& stage) {
+  std::uint64_t h = 1469598103934665603ULL ^ seed;
+  for (const char c : stage) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
 }  // namespace pbms::dpd

@@ -47,6 +47,10 @@ struct DpdModel {
 // stage's `initial: {from_stage: ...}`. Every rank holds the full set.
 void keep_final_state(const std::string& stage, DpdParticles all);
 
+// The run seed mixed with the stage name (FNV-1a): each stage's noise
+// stream differs from every other's of the same run, on every machine.
+[[nodiscard]] std::uint64_t stage_seed(std::uint64_t seed, const std::string& stage);
+
 // `seed` keys the initial velocities. Throws pbms::Error for more than 32
 // groups, a reused name, an unknown group in `motion`, an empty system, or
 // an unknown from_stage.

@@ -119,6 +119,8 @@ config::StageKindSpec DpdElasticStage::spec() {
       {"c44_error", OutputSpec::Shape::kScalar, "GPa", "Standard error of C44"},
       {"youngs_modulus_100", OutputSpec::Shape::kScalar, "GPa",
        "E<100> = (C11 - C12)(C11 + 2 C12)/(C11 + C12)"},
+      {"poisson_ratio_100", OutputSpec::Shape::kScalar, "1",
+       "C12 / (C11 + C12): lateral contraction under uniaxial stress along [100]"},
       {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa", "(C11 + 2 C12)/3"},
       {"lattice_constant", OutputSpec::Shape::kScalar, "Å", "Lattice constant used"},
       {"density", OutputSpec::Shape::kScalar, "kg/m^3", "Mass density of that crystal"},
@@ -147,6 +149,7 @@ void DpdElasticStage::run(StageContext& ctx) {
     r.add_scalar("c12_error", e.c12_error, "GPa");
     r.add_scalar("c44_error", e.c44_error, "GPa");
     r.add_scalar("youngs_modulus_100", e.youngs_100(), "GPa");
+    r.add_scalar("poisson_ratio_100", e.c12 / (e.c11 + e.c12), "1");
     r.add_scalar("bulk_modulus", e.bulk_modulus(), "GPa");
     r.add_scalar("lattice_constant", a, "Å");
     r.add_scalar("density", rho, "kg/m^3");

@@ -13,6 +13,7 @@
 #include "dpd_probes.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
+#include "pbms/analysis/first_crossing.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
@@ -25,32 +26,9 @@ namespace {
 
 enum class Mode { kFree, kImpact, kTension, kEquilibrate };
 
-// FNV-1a: a stage's noise stream differs from every other stage's of the
-// same run seed, and is the same on every machine.
-std::uint64_t stage_seed(std::uint64_t seed, const std::string& stage) {
-  std::uint64_t h = 1469598103934665603ULL ^ seed;
-  for (const char c : stage) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
-
 int axis_of(const YAML::Node& n) {
   const auto a = n.as<std::string>();
   return a == "x" ? 0 : a == "y" ? 1 : 2;
-}
-
-// The time a series first exceeds `threshold`, interpolated between samples;
-// NaN if it never does.
-double first_crossing(const std::vector<double>& t, const std::vector<double>& s,
-                      double threshold) {
-  for (std::size_t k = 1; k < s.size(); ++k) {
-    if (s[k] >= threshold && s[k - 1] < threshold) {
-      return t[k - 1] + (threshold - s[k - 1]) / (s[k] - s[k - 1]) * (t[k] - t[k - 1]);
-    }
-  }
-  return std::nan("");
 }
 
 // The DPD/MPM-grid step of a stage's `grid` map, with the stage's rigid
@@ -286,8 +264,8 @@ void run_stage(StageContext& ctx, Mode mode) {
   }
   if (mode == Mode::kImpact) {
     const double threshold = p["impact"]["threshold"].as<double>();
-    const double t_near = first_crossing(slab_t, near_s, threshold);
-    const double t_far = first_crossing(slab_t, far_s, threshold);
+    const double t_near = analysis::first_crossing(slab_t, near_s, threshold);
+    const double t_far = analysis::first_crossing(slab_t, far_s, threshold);
     r.add_column("slabs", "time", "ps", slab_t);
     r.add_column("slabs", "near_displacement", "Å", near_s);
     r.add_column("slabs", "far_displacement", "Å", far_s);

@@ -8,9 +8,7 @@ using config::Param;
 using geometry::region_param;
 using units::Dimension;
 
-namespace {
-
-std::vector<Param> common_params() {
+std::vector<Param> dpd_stage_params() {
   const Param box =
       Param::map("box",
                  {Param::real_list("lo", Dimension::kLength, "Lower corner").require().length(3, 3),
@@ -161,6 +159,8 @@ std::vector<Param> common_params() {
   };
 }
 
+namespace {
+
 std::vector<OutputSpec> common_outputs() {
   return {
       {"steps", OutputSpec::Shape::kScalar, "1", "Time steps taken"},
@@ -188,7 +188,7 @@ config::StageKindSpec DpdRunStage::spec() {
       "DPD or DPDE run of mesoparticles: free, impact (wave speed) or tension (Young's "
       "modulus)";
   s.material_kinds = {"dpd_mesoparticle"};
-  s.params = common_params();
+  s.params = dpd_stage_params();
   s.params.push_back(
       Param::choice("mode", {"free", "impact", "tension"},
                     "free: no analysis; impact: wave speed from two slabs' first motion; "
@@ -241,7 +241,7 @@ config::StageKindSpec DpdEquilibrateStage::spec() {
   s.program = "dpd_driver";
   s.doc = "DPD run with a Berendsen thermostat, for a later stage to start from";
   s.material_kinds = {"dpd_mesoparticle"};
-  s.params = common_params();
+  s.params = dpd_stage_params();
   s.params.push_back(
       Param::real("target_temperature", Dimension::kTemperature, "Berendsen target temperature")
           .require()

@@ -50,6 +50,8 @@ class MpmEngine {
   [[nodiscard]] MaterialPoints& points() { return model_.points; }
   [[nodiscard]] const MaterialPoints& points() const { return model_.points; }
   [[nodiscard]] const MpmModel& model() const { return model_; }
+  // The loads a coupling scheme adds to (point forces from another program).
+  [[nodiscard]] BoundaryConditions& boundary_conditions() { return model_.bc; }
   [[nodiscard]] MpmSolver& solver() { return *solver_; }
   [[nodiscard]] const MpmSolver& solver() const { return *solver_; }
   [[nodiscard]] const grid::GridPartition& partition() const { return partition_; }

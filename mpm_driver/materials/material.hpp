@@ -53,6 +53,11 @@ class Material {
   // solids, internal energy for the gas. Kinetic + stored + dissipated is
   // conserved by a consistent solver.
   [[nodiscard]] virtual double stored_energy_density(const MaterialPointState& state) const = 0;
+  // Whether the point's deformation gradient describes its material, so that
+  // an inverted one is a failure. Not for particles whose structure comes
+  // from their own pair forces (the DPD particles of the grid model), where
+  // F is only the grid's velocity field integrated along their path.
+  [[nodiscard]] virtual bool tracks_deformation() const { return true; }
 
   // Energy per unit volume turned into heat so far (plastic work).
   [[nodiscard]] virtual double dissipated_energy_density(const MaterialPointState&) const {

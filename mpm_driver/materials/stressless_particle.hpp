@@ -28,6 +28,7 @@ class StresslessParticle final : public Material {
   [[nodiscard]] double stored_energy_density(const MaterialPointState& /*state*/) const override {
     return 0.0;
   }
+  [[nodiscard]] bool tracks_deformation() const override { return false; }
 };
 
 }  // namespace pbms::mpm

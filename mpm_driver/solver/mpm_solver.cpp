@@ -624,6 +624,7 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
   for (size_t i = 0; i < m; ++i) {
     if (!(J[i] > 0.0)) [[unlikely]] {
       const size_t p = p0 + i;
+      if (!materials_[static_cast<size_t>(points.material[p])]->tracks_deformation()) continue;
       throw Error(fmt::format(
           "material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted (det F = {:.3g}): the time "
           "step is too large or the material failed",

@@ -29,15 +29,15 @@ std::array<int, 3> canonical(std::array<int, 3> ijk, const grid::RegularGrid& g,
   return ijk;
 }
 
-void check_split(int first_program_ranks, const std::array<bool, 3>& periodic) {
+void check_split(int first_program_ranks, const std::array<bool, 3>& periodic,
+                 const grid::RegularGrid& g = grid::RegularGrid({-3.0, 0.0, 1.0}, 1.5, {8, 5, 6}),
+                 const grid::NodeBox& band = grid::NodeBox{{2, 0, 0}, {6, 6, 7}}) {
   const TwoPrograms job(first_program_ranks);
   const int program = job.program, rank = job.rank;
   const int* ranks = job.ranks;
 
-  const grid::RegularGrid g({-3.0, 0.0, 1.0}, 1.5, {8, 5, 6});
   const grid::GridPartition mine(g, periodic, ranks[program]);
   const grid::GridPartition theirs(g, periodic, ranks[1 - program]);
-  const grid::NodeBox band{{2, 0, 0}, {6, 6, 7}};
   NodalSumAcrossPrograms sum(job.inter, mine, theirs, band);
 
   constexpr int kComponents = 7, kStride = 8;
@@ -80,5 +80,14 @@ TEST(NodalSumAcrossPrograms, EveryCopyHoldsBothProgramsPartsExactly) {
           std::array<bool, 3>{true, true, true}}) {
       check_split(first, periodic);
     }
+  }
+}
+
+// A concurrent bar's grid: free along x, periodic across, the band a few
+// node planes either side of the interface (tests/mpi/test_concurrent_split.cpp).
+TEST(NodalSumAcrossPrograms, ABarPeriodicAcrossWithABandAroundItsInterface) {
+  const grid::RegularGrid g({-14.46, 0.0, 0.0}, 3.615, {24, 8, 8});
+  for (int first = 1; first < world_size(); ++first) {
+    check_split(first, {false, true, true}, g, {{9, 0, 0}, {16, 9, 9}});
   }
 }

@@ -161,9 +161,8 @@ TEST(DpdGridStep, TakesAGivenGridThatSpansThePeriodicAxes) {
   auto given = crystal(4, cutoff);
   const double h = kLattice / 2.0;
   DpdGridStep own_grid(*own, {h, 1.0, 4, {}});
-  mpm::GridPatch patch = mpm::GridPatch::whole(own_grid.grid());
-  patch.periodic = {true, true, true};
-  DpdGridStep given_grid(*given, {h, 1.0, 4, {}}, patch);
+  const std::array<bool, 3> periodic{true, true, true};
+  DpdGridStep given_grid(*given, {h, 1.0, 4, {}}, own_grid.grid(), periodic);
   EXPECT_EQ(given_grid.partition().ranks(), 1);
   for (int n = 0; n < 20; ++n) {
     own_grid.step();
@@ -172,7 +171,53 @@ TEST(DpdGridStep, TakesAGivenGridThatSpansThePeriodicAxes) {
   for (std::size_t i = 0; i < own->owned(); ++i) {
     EXPECT_EQ(own->particles().x[i], given->particles().x[i]) << i;
   }
-  mpm::GridPatch shifted = patch;
-  shifted.domain = grid::RegularGrid({-h / 2.0, 0.0, 0.0}, h, own_grid.grid().cells());
-  EXPECT_THROW(DpdGridStep(*given, {h, 1.0, 4, {}}, shifted), Error);
+  const grid::RegularGrid shifted({-h / 2.0, 0.0, 0.0}, h, own_grid.grid().cells());
+  EXPECT_THROW(DpdGridStep(*given, {h, 1.0, 4, {}}, shifted, periodic), Error);
+  EXPECT_THROW(DpdGridStep(*given, {h, 1.0, 4, {}}, own_grid.grid(), {true, true, false}), Error);
+}
+
+// On a periodic axis the grid's last node is its first, so the seam of a
+// periodic grid is like any other node plane: a crystal moved along x by
+// half the box, a whole number of cells, takes the same steps. With PIC
+// (flip 0), no net pair force (a perfect lattice, no thermostat) and a
+// y-velocity given to one layer of particles, velocities spread through
+// the nodes only; a seam whose two node planes were not summed would stop
+// them there.
+TEST(DpdGridStep, APeriodicCrystalMovedByWholeCellsTakesTheSameSteps) {
+  const double h = kLattice / 3.0;  // 12 cells over the 4-cell crystal
+  auto run = [&](double shift) {
+    FccCrystal c = fcc_crystal(4, 4, 4, kLattice, kMass);
+    const double length = c.box.length(0);
+    for (std::size_t i = 0; i < c.particles.size(); ++i) {
+      auto& x = c.particles.x[i];
+      c.particles.v[i] = {0.0, 0.0, (x[0] < 0.1 * h) ? 0.5 : 0.0};
+      c.particles.v[i][1] = x[0] < 0.1 * h ? 1.0 : 0.0;
+      // Off the node planes in y and z, so that neighbouring layers share nodes.
+      x[0] += shift;
+      x[1] += 0.3 * h;
+      x[2] += 0.3 * h;
+      if (x[0] >= c.box.hi[0]) x[0] -= length;
+    }
+    DpdIntegratorSettings nve;
+    nve.dt = 0.01;
+    DpdEngine engine(MPI_COMM_SELF, c.box, cu_cg_morse(), nve, std::move(c.particles));
+    DpdGridStep grid(engine, {h, 0.0, 4, {}});
+    for (int n = 0; n < 5; ++n) grid.step();
+    std::vector<Vec3> v(engine.owned());
+    for (std::size_t i = 0; i < engine.owned(); ++i) {
+      v[static_cast<std::size_t>(engine.particles().id[i] - 1)] = engine.particles().v[i];
+    }
+    return v;
+  };
+  // Layers at 0.8 h + 1.5 h k: the first and the last (11.3 h) share the
+  // seam's nodes; moved by 6 h (two lattice cells) they share node plane 6.
+  const auto at_seam = run(0.8 * h);
+  const auto inside = run(6.8 * h);
+  double spread = 0.0, diff = 0.0;
+  for (std::size_t i = 0; i < at_seam.size(); ++i) {
+    spread = std::max(spread, std::abs(inside[i][1]) < 0.99 ? std::abs(inside[i][1]) : 0.0);
+    for (int a = 0; a < 3; ++a) diff = std::max(diff, std::abs(at_seam[i][a] - inside[i][a]));
+  }
+  EXPECT_GT(spread, 0.01);  // the velocity did spread to other layers
+  EXPECT_LT(diff, 1e-12);
 }

@@ -50,6 +50,16 @@ struct StageKindSpec {
   bool cacheable = false;
   // A coupler-side kind: the drivers it sends requests to.
   std::vector<std::string> uses;
+  // A kind run by several drivers together (a concurrent DPD/MPM stage):
+  // the coupler sends the same parameters to each partner program as its
+  // `kind`, at the same time as to `program`, and collects every answer.
+  struct Partner {
+    std::string program;
+    std::string kind;
+  };
+  std::vector<Partner> partners;
+  // Only ever a partner's part of another kind; a workflow may not name it.
+  bool internal = false;
   // Checks the schema cannot express (a fit's free parameters against the
   // material's pair style); reports through the validator. Declared beside
   // the kind's code, in-process only: never part of --describe.

@@ -5,6 +5,13 @@
 // pairs whose boxes come within reach (found once, from the boxes both
 // sides exchange at set-up); periodic images arrive already shifted next
 // to the receiver. Never through a root, and the coupler is not involved.
+//
+// The receiver says along which axes it wants images: none where its own
+// neighbour list already wraps around the box (a DPD rank that spans a
+// periodic axis), the box length where it does not. Under the
+// momentum-conserving interface the receiver sends each ghost's pair
+// force back to the rank that owns the point (return_forces /
+// collect_forces).
 #pragma once
 
 #include <mpi.h>
@@ -45,15 +52,29 @@ class PointGhostsAcrossPrograms {
 
   // Collective over both programs' ranks (one exchange of boxes over the
   // intercommunicator `inter`, which must outlive this). A sender passes
-  // the box its points lie in; a receiver the box it needs ghosts around.
+  // the box its points lie in; a receiver the box it needs ghosts around
+  // and the periodic lengths along which it needs images (a sender's
+  // `periodic` is not used).
   PointGhostsAcrossPrograms(MPI_Comm inter, Side side, const SpaceBox& box, double reach,
                             const PeriodicLengths& periodic);
+
+  // New boxes (and a receiver's images), for particles that moved: the
+  // same collective exchange as at construction, both programs together.
+  void update_boxes(const SpaceBox& box, const PeriodicLengths& periodic);
 
   // Sender: every point within reach of each receiver that needs it.
   void send(const std::vector<std::int64_t>& id, const std::vector<Vec3>& x,
             const std::vector<Vec3>& v, const std::vector<double>& mass);
   // Receiver: the ghosts of this step, by sender rank then sender order.
   const std::vector<GhostPoint>& receive();
+
+  // Receiver: a force on each ghost of the last receive(), in its order,
+  // sent back to the ghost's sender.
+  void return_forces(const std::vector<Vec3>& force);
+  // Sender: adds the forces the receivers returned for the points of the
+  // last send() to `force`, indexed like those points (images of one
+  // point all add to it).
+  void collect_forces(std::vector<Vec3>& force);
 
   // Ranks of the other program this one exchanges with (each step).
   [[nodiscard]] const std::vector<int>& peers() const { return peers_; }
@@ -62,17 +83,22 @@ class PointGhostsAcrossPrograms {
  private:
   // The shifts (in periodic lengths) under which `from` comes within reach
   // of `to`.
-  [[nodiscard]] std::vector<std::array<int, 3>> images(const SpaceBox& from,
-                                                       const SpaceBox& to) const;
-  void append_images(std::int64_t id, const Vec3& x, const Vec3& v, double mass, const SpaceBox& to,
-                     std::vector<double>& buf) const;
+  [[nodiscard]] std::vector<std::array<int, 3>> images(const SpaceBox& from, const SpaceBox& to,
+                                                       const PeriodicLengths& periodic) const;
+  // Appends each image of one point within reach of peer p; returns how many.
+  int append_images(std::int64_t id, const Vec3& x, const Vec3& v, double mass, std::size_t p,
+                    std::vector<double>& buf) const;
 
   MPI_Comm inter_;
   Side side_;
   double reach_;
   PeriodicLengths periodic_;
+  SpaceBox box_;
   std::vector<SpaceBox> remote_boxes_;
+  std::vector<PeriodicLengths> remote_images_;  // what each receiver asked for
   std::vector<int> peers_;
+  std::vector<std::vector<std::size_t>> sent_from_;  // sender: the point of each record, per peer
+  std::vector<std::size_t> received_;                // receiver: ghosts from each peer
   std::vector<std::vector<double>> send_buf_;
   std::vector<MPI_Request> requests_;
   std::vector<double> recv_buf_;

@@ -1,7 +1,9 @@
 // How the programs of one MPMD job find each other. Every process splits
-// MPI_COMM_WORLD by MPI_APPNUM into its program's communicator and learns
+// MPI_COMM_WORLD by its app number into its program's communicator and learns
 // which apps exist; who is who is settled by the handshake (Hello), never by
-// the order of the mpirun command line.
+// the order of the mpirun command line. The app number is the environment
+// variable PBMS_APP where the launcher sets it (srun --multi-prog, which
+// leaves MPI_APPNUM 0 for everyone), else MPI_APPNUM (mpirun).
 #pragma once
 
 #include <optional>

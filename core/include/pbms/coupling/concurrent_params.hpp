@@ -1,0 +1,65 @@
+// The parameters of a concurrent DPD/MPM stage that both of its parts
+// read (dpd_driver's `concurrent` and mpm_driver's part of it), turned once
+// into a typed struct from the validated stage map. The DPD part also
+// reads the body (bodies or initial state, groups, motion) the way every
+// dpd stage does.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/coupling/coupling_side.hpp"
+#include "pbms/geometry/region.hpp"
+#include "pbms/grid/regular_grid.hpp"
+
+namespace pbms::coupling {
+
+enum class Solver { kDpd, kMpm };
+
+struct ConcurrentRegion {
+  std::string name;
+  Solver solver = Solver::kDpd;
+  std::shared_ptr<const geometry::Region> region;
+};
+
+// A wave speed between two slabs (groups) of one solver's particles.
+struct SpeedProbe {
+  std::string name;
+  std::string near_slab, far_slab;
+};
+
+struct ConcurrentParams {
+  grid::RegularGrid grid{{0.0, 0.0, 0.0}, 1.0, {1, 1, 1}};
+  std::array<bool, 3> periodic{false, false, false};
+  double flip = 1.0;
+  // Extra reach of the interface band beyond the cells the two bodies
+  // touch, Å: how far particles may travel from where they start.
+  double band_margin = 0.0;
+  std::vector<ConcurrentRegion> regions;
+  InterfaceTreatment interface = InterfaceTreatment::kSeed;
+  double youngs_modulus = 0.0;  // bar
+  double poisson_ratio = 0.0;
+  double time_step = 0.0;  // ps
+  std::int64_t steps = 0, sample_every = 1, particles_every = 0, profile_every = 0;
+  int axis = 0;            // of the wave and the interface opening
+  double threshold = 0.0;  // Å, a slab's first motion
+  std::vector<SpeedProbe> speeds;
+  // The lattice planes on either side of the interface (groups), whose
+  // displacement jump is the interface opening.
+  std::optional<std::pair<std::string, std::string>> opening;  // dpd plane, mpm plane
+
+  // The solver of a particle at x: the first region holding it, DPD when
+  // none does (a flyer outside the body's regions).
+  [[nodiscard]] Solver solver_at(const geometry::Vec3& x) const;
+};
+
+// Reads a `concurrent` stage's validated parameters (metal units).
+[[nodiscard]] ConcurrentParams concurrent_params(const YAML::Node& params);
+
+}  // namespace pbms::coupling

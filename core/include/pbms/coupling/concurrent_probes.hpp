@@ -1,0 +1,79 @@
+// What each side of a concurrent stage measures of its own particles, the
+// same way on both: the slabs' first motion and the wave speed between
+// them, the displacement of the interface's lattice plane, the kinetic
+// energy and momentum (the ledger), and displacement profiles along the
+// wave's axis. Sums run over the side's own ranks; each side reports under
+// its own prefix ("dpd", "mpm").
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "pbms/coupling/concurrent_params.hpp"
+#include "pbms/results.hpp"
+
+namespace pbms::coupling {
+
+// A side's owned particles at one moment.
+struct ParticleView {
+  std::size_t count = 0;
+  const std::vector<std::int64_t>& id;
+  const std::vector<Vec3>& x;
+  const std::vector<Vec3>& v;
+  const std::vector<double>& mass;
+  const std::vector<std::uint32_t>& groups;
+};
+
+class ConcurrentProbes {
+ public:
+  // `group_names[g]` names bit g of the groups; `bin` is the profile bin
+  // width along the axis, Å. Collective over `comm`.
+  ConcurrentProbes(MPI_Comm comm, const ConcurrentParams& params,
+                   const std::vector<std::string>& group_names, double bin,
+                   const ParticleView& start);
+
+  // Every step: the tracked slabs' displacement along the axis.
+  void track(std::int64_t step, const ParticleView& now);
+  // Every sample_every steps: the ledger's kinetic energy (eV) and momentum,
+  // and a profile every profile_every steps.
+  void sample(std::int64_t step, const ParticleView& now);
+  // The displacement of a group's centre of mass along the axis since the
+  // start, NaN when this side has none of it.
+  [[nodiscard]] double displacement(const std::string& group, const ParticleView& now) const;
+
+  [[nodiscard]] double kinetic_energy() const { return kinetic_.empty() ? 0.0 : kinetic_.back(); }
+  [[nodiscard]] const std::array<double, 3>& momentum() const { return momentum_; }
+  // Adds `<prefix>_` scalars and tables.
+  void report(StageResults& r, const std::string& prefix) const;
+
+ private:
+  struct Moments {
+    double mass = 0.0, first = 0.0;
+  };
+  [[nodiscard]] std::uint32_t mask_of(const std::string& group) const;
+  [[nodiscard]] double displacement(std::uint32_t mask, const ParticleView& now) const;
+  [[nodiscard]] double centre(std::uint32_t mask, const ParticleView& now) const;
+  void profile(double t, const ParticleView& now);
+
+  MPI_Comm comm_;
+  const ConcurrentParams& p_;
+  std::vector<std::string> group_names_;
+  std::unordered_map<std::int64_t, Vec3> start_;
+  double lo_ = 0.0, bin_ = 1.0;
+  std::size_t bins_ = 0;
+  std::vector<std::string> tracked_;  // groups this side has, in speed order
+  std::vector<std::vector<double>> tracked_s_;
+  std::vector<double> tracked_at_;  // centre of mass along the axis at the start, Å
+  std::vector<double> track_t_;
+  std::vector<double> sample_t_, kinetic_, px_, py_, pz_;
+  std::array<double, 3> momentum_{};
+  std::vector<double> profile_t_;
+  std::vector<std::vector<double>> profiles_;
+};
+
+}  // namespace pbms::coupling

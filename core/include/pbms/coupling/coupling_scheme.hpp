@@ -1,0 +1,32 @@
+// The order of a concurrent DPD/MPM step (METHOD.md §3), and nothing else:
+// which phase of which side runs when, and where the link exchanges.
+// A split run has one side per program and a CrossProgramLink; the
+// monolithic reference has both sides in one process and an InProcessLink,
+// and the same order.
+#pragma once
+
+#include <vector>
+
+#include "pbms/coupling/coupling_link.hpp"
+#include "pbms/coupling/coupling_side.hpp"
+
+namespace pbms::coupling {
+
+class CouplingScheme {
+ public:
+  // The sides this process runs (one or both) and the link between them;
+  // all must outlive the scheme.
+  CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link, InterfaceTreatment treatment);
+
+  // One step. Collective over both sides' ranks.
+  void step();
+
+  [[nodiscard]] InterfaceTreatment treatment() const { return treatment_; }
+
+ private:
+  std::vector<GridSide*> sides_;
+  CouplingLink& link_;
+  InterfaceTreatment treatment_;
+};
+
+}  // namespace pbms::coupling

@@ -1,0 +1,47 @@
+// The link of a split concurrent run: this program's side and the other
+// program, joined by an intercommunicator. Partners go from the continuum
+// ranks to the particle ranks within reach (PointGhostsAcrossPrograms),
+// reactions come back the same way, and the nodal sums run between the
+// ranks whose grid boxes overlap (NodalSumAcrossPrograms). Rank to rank;
+// nothing passes through a root or the coupler.
+#pragma once
+
+#include <mpi.h>
+
+#include <memory>
+
+#include "pbms/coupling/coupling_link.hpp"
+#include "pbms/coupling/coupling_side.hpp"
+#include "pbms/coupling/nodal_sum_across_programs.hpp"
+#include "pbms/coupling/point_ghosts_across_programs.hpp"
+#include "pbms/grid/grid_partition.hpp"
+
+namespace pbms::coupling {
+
+class CrossProgramLink : public CouplingLink {
+ public:
+  // Collective over both programs (the ghost plan swaps boxes). `mine` and
+  // `theirs` split the shared grid over this program's and the other's
+  // ranks; `band` is the nodes both may touch; `reach` the pair cutoff.
+  // Everything passed must outlive the link.
+  CrossProgramLink(MPI_Comm inter, ParticleSide& side, const grid::GridPartition& mine,
+                   const grid::GridPartition& theirs, const grid::NodeBox& band, double reach);
+  CrossProgramLink(MPI_Comm inter, ContinuumSide& side, const grid::GridPartition& mine,
+                   const grid::GridPartition& theirs, const grid::NodeBox& band, double reach);
+
+  void share_partners() override;
+  void return_reactions() override;
+  void sum_nodes(int first, int count) override;
+
+  [[nodiscard]] const ExchangeProfile& nodal_profile() const { return sum_.profile(); }
+  [[nodiscard]] const ExchangeProfile& partner_profile() const { return ghosts_->profile(); }
+
+ private:
+  GridSide& side_;
+  ParticleSide* particles_ = nullptr;
+  ContinuumSide* continuum_ = nullptr;
+  NodalSumAcrossPrograms sum_;
+  std::unique_ptr<PointGhostsAcrossPrograms> ghosts_;
+};
+
+}  // namespace pbms::coupling

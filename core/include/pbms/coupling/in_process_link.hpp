@@ -1,0 +1,31 @@
+// The link of the monolithic reference: both sides in one process, the
+// partners handed over directly (every continuum point, at its images
+// where the particle side asks for them), the reactions added back to
+// their points and the nodal records added node by node over the nodes
+// both sides hold. No band and no reach: whatever the split run leaves out
+// by them shows as a difference to this.
+#pragma once
+
+#include <vector>
+
+#include "pbms/coupling/coupling_link.hpp"
+#include "pbms/coupling/coupling_side.hpp"
+
+namespace pbms::coupling {
+
+class InProcessLink : public CouplingLink {
+ public:
+  // Both sides must outlive the link.
+  InProcessLink(ParticleSide& particles, ContinuumSide& continuum);
+
+  void share_partners() override;
+  void return_reactions() override;
+  void sum_nodes(int first, int count) override;
+
+ private:
+  ParticleSide& particles_;
+  ContinuumSide& continuum_;
+  std::vector<std::size_t> partner_point_;  // the continuum point of each partner
+};
+
+}  // namespace pbms::coupling

@@ -1,0 +1,67 @@
+#include "pbms/coupling/concurrent_params.hpp"
+
+#include <cmath>
+
+#include "pbms/geometry/region_yaml.hpp"
+
+namespace pbms::coupling {
+namespace {
+
+int axis_index(const std::string& a) {
+  return a == "x" ? 0 : a == "y" ? 1 : 2;
+}
+
+InterfaceTreatment treatment(const std::string& name) {
+  if (name == "none") return InterfaceTreatment::kNone;
+  if (name == "momentum_conserving") return InterfaceTreatment::kMomentumConserving;
+  return InterfaceTreatment::kSeed;
+}
+
+}  // namespace
+
+Solver ConcurrentParams::solver_at(const geometry::Vec3& x) const {
+  for (const auto& r : regions) {
+    if (r.region->contains(x)) return r.solver;
+  }
+  return Solver::kDpd;
+}
+
+ConcurrentParams concurrent_params(const YAML::Node& p) {
+  ConcurrentParams c;
+  const YAML::Node g = p["grid"];
+  const auto origin = g["origin"].as<std::vector<double>>();
+  const auto cells = g["cells"].as<std::vector<int>>();
+  c.grid = grid::RegularGrid({origin[0], origin[1], origin[2]}, g["cell_size"].as<double>(),
+                             {cells[0], cells[1], cells[2]});
+  c.flip = g["flip"].as<double>();
+  c.band_margin = g["band_margin"].as<double>();
+  for (const auto& a : p["box"]["periodic"]) c.periodic[axis_index(a.as<std::string>())] = true;
+  for (const auto& r : p["regions"]) {
+    c.regions.push_back({r["name"].as<std::string>(),
+                         r["solver"].as<std::string>() == "mpm" ? Solver::kMpm : Solver::kDpd,
+                         geometry::region_from_yaml(r["region"])});
+  }
+  c.interface = treatment(p["interface"].as<std::string>());
+  c.youngs_modulus = p["continuum"]["youngs_modulus"].as<double>();
+  c.poisson_ratio = p["continuum"]["poisson_ratio"].as<double>();
+  c.time_step = p["time_step"].as<double>();
+  c.steps = p["steps"].as<std::int64_t>();
+  c.sample_every = p["sample_every"].as<std::int64_t>();
+  c.particles_every = p["particles_every"].as<std::int64_t>();
+  c.profile_every = p["profile_every"].as<std::int64_t>();
+  if (const YAML::Node w = p["wave"]) {
+    c.axis = axis_index(w["axis"].as<std::string>());
+    c.threshold = w["threshold"].as<double>();
+    for (const auto& s : w["speeds"]) {
+      c.speeds.push_back({s["name"].as<std::string>(), s["near_slab"].as<std::string>(),
+                          s["far_slab"].as<std::string>()});
+    }
+    if (const YAML::Node o = w["opening"]) {
+      c.opening =
+          std::make_pair(o["dpd_plane"].as<std::string>(), o["mpm_plane"].as<std::string>());
+    }
+  }
+  return c;
+}
+
+}  // namespace pbms::coupling

@@ -1,0 +1,168 @@
+#include "pbms/coupling/concurrent_probes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "pbms/analysis/first_crossing.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::coupling {
+namespace {
+
+void sum_over(MPI_Comm comm, double* v, int n) {
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, comm),
+             "MPI_Allreduce (concurrent probes)");
+}
+
+}  // namespace
+
+ConcurrentProbes::ConcurrentProbes(MPI_Comm comm, const ConcurrentParams& params,
+                                   const std::vector<std::string>& group_names, double bin,
+                                   const ParticleView& start)
+    : comm_(comm), p_(params), group_names_(group_names), bin_(bin) {
+  for (std::size_t i = 0; i < start.count; ++i) start_[start.id[i]] = start.x[i];
+  const auto a = static_cast<std::size_t>(p_.axis);
+  lo_ = p_.grid.origin()[a];
+  bins_ = static_cast<std::size_t>(std::ceil((p_.grid.upper()[a] - lo_) / bin_));
+  // A slab counts on the side that holds all of it.
+  for (const auto& s : p_.speeds) {
+    for (const auto& g : {s.near_slab, s.far_slab}) {
+      if (std::find(tracked_.begin(), tracked_.end(), g) == tracked_.end() &&
+          !std::isnan(displacement(g, start))) {
+        tracked_.push_back(g);
+      }
+    }
+  }
+  tracked_s_.resize(tracked_.size());
+  for (const auto& g : tracked_) tracked_at_.push_back(centre(mask_of(g), start));
+}
+
+double ConcurrentProbes::centre(std::uint32_t mask, const ParticleView& now) const {
+  const auto a = static_cast<std::size_t>(p_.axis);
+  double m[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < now.count; ++i) {
+    if ((now.groups[i] & mask) == 0) continue;
+    m[0] += now.mass[i];
+    m[1] += now.mass[i] * now.x[i][a];
+  }
+  sum_over(comm_, m, 2);
+  return m[0] > 0.0 ? m[1] / m[0] : std::nan("");
+}
+
+std::uint32_t ConcurrentProbes::mask_of(const std::string& group) const {
+  for (std::size_t g = 0; g < group_names_.size(); ++g) {
+    if (group_names_[g] == group) return std::uint32_t{1} << g;
+  }
+  return 0;
+}
+
+double ConcurrentProbes::displacement(const std::string& group, const ParticleView& now) const {
+  return displacement(mask_of(group), now);
+}
+
+double ConcurrentProbes::displacement(std::uint32_t mask, const ParticleView& now) const {
+  const auto a = static_cast<std::size_t>(p_.axis);
+  double m[2] = {0.0, 0.0};  // mass, mass-weighted displacement
+  for (std::size_t i = 0; i < now.count; ++i) {
+    if ((now.groups[i] & mask) == 0) continue;
+    m[0] += now.mass[i];
+    m[1] += now.mass[i] * (now.x[i][a] - start_.at(now.id[i])[a]);
+  }
+  sum_over(comm_, m, 2);
+  return m[0] > 0.0 ? m[1] / m[0] : std::nan("");
+}
+
+void ConcurrentProbes::track(std::int64_t step, const ParticleView& now) {
+  track_t_.push_back(static_cast<double>(step) * p_.time_step);
+  for (std::size_t k = 0; k < tracked_.size(); ++k) {
+    tracked_s_[k].push_back(displacement(tracked_[k], now));
+  }
+}
+
+void ConcurrentProbes::sample(std::int64_t step, const ParticleView& now) {
+  double s[4] = {0.0, 0.0, 0.0, 0.0};  // 2 E_kin / mvv2e, momentum
+  for (std::size_t i = 0; i < now.count; ++i) {
+    const Vec3& v = now.v[i];
+    s[0] += now.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (std::size_t a = 0; a < 3; ++a) s[a + 1] += now.mass[i] * v[a];
+  }
+  sum_over(comm_, s, 4);
+  const double t = static_cast<double>(step) * p_.time_step;
+  sample_t_.push_back(t);
+  kinetic_.push_back(0.5 * s[0] * units::kMvv2e);
+  px_.push_back(s[1]);
+  py_.push_back(s[2]);
+  pz_.push_back(s[3]);
+  momentum_ = {s[1], s[2], s[3]};
+  if (p_.profile_every > 0 && step % p_.profile_every == 0) profile(t, now);
+}
+
+// The mean displacement along the axis of the particles starting in each
+// bin of the axis.
+void ConcurrentProbes::profile(double t, const ParticleView& now) {
+  const auto a = static_cast<std::size_t>(p_.axis);
+  std::vector<double> sums(2 * bins_, 0.0);
+  for (std::size_t i = 0; i < now.count; ++i) {
+    const Vec3& x0 = start_.at(now.id[i]);
+    const auto b = static_cast<std::size_t>(
+        std::clamp(std::floor((x0[a] - lo_) / bin_), 0.0, static_cast<double>(bins_ - 1)));
+    sums[2 * b] += 1.0;
+    sums[2 * b + 1] += now.x[i][a] - x0[a];
+  }
+  sum_over(comm_, sums.data(), static_cast<int>(sums.size()));
+  std::vector<double> mean(bins_);
+  for (std::size_t b = 0; b < bins_; ++b) {
+    mean[b] = sums[2 * b] > 0.0 ? sums[2 * b + 1] / sums[2 * b] : std::nan("");
+  }
+  profile_t_.push_back(t);
+  profiles_.push_back(std::move(mean));
+}
+
+void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const {
+  r.add_column(prefix + "_ledger", "time", "ps", sample_t_);
+  r.add_column(prefix + "_ledger", "kinetic_energy", "eV", kinetic_);
+  r.add_column(prefix + "_ledger", "momentum_x", "g/mol*Å/ps", px_);
+  r.add_column(prefix + "_ledger", "momentum_y", "g/mol*Å/ps", py_);
+  r.add_column(prefix + "_ledger", "momentum_z", "g/mol*Å/ps", pz_);
+  if (!tracked_.empty()) {
+    r.add_column(prefix + "_slabs", "time", "ps", track_t_);
+    for (std::size_t k = 0; k < tracked_.size(); ++k) {
+      r.add_column(prefix + "_slabs", tracked_[k], "Å", tracked_s_[k]);
+    }
+  }
+  for (const auto& s : p_.speeds) {
+    const auto near = std::find(tracked_.begin(), tracked_.end(), s.near_slab);
+    const auto far = std::find(tracked_.begin(), tracked_.end(), s.far_slab);
+    if (near == tracked_.end() || far == tracked_.end()) continue;
+    const auto in = static_cast<std::size_t>(near - tracked_.begin());
+    const auto jf = static_cast<std::size_t>(far - tracked_.begin());
+    const auto& sn = tracked_s_[in];
+    const auto& sf = tracked_s_[jf];
+    const double tn = analysis::first_crossing(track_t_, sn, p_.threshold);
+    const double tf = analysis::first_crossing(track_t_, sf, p_.threshold);
+    r.add_scalar("first_motion_" + s.near_slab, tn, "ps");
+    r.add_scalar("first_motion_" + s.far_slab, tf, "ps");
+    if (tf > tn) {
+      // Å/ps is 100 m/s.
+      const double distance = std::abs(tracked_at_[jf] - tracked_at_[in]);
+      r.add_scalar("wave_speed_" + s.name, distance / (tf - tn) * 100.0, "m/s");
+    } else {
+      r.attributes["wave_speed_" + s.name] = fmt::format(
+          "not measured: the wave did not reach both slabs (first motion {:.4g} and {:.4g} ps)", tn,
+          tf);
+    }
+  }
+  if (!profiles_.empty()) {
+    std::vector<double> centre(bins_);
+    for (std::size_t b = 0; b < bins_; ++b) centre[b] = lo_ + (static_cast<double>(b) + 0.5) * bin_;
+    r.add_column(prefix + "_profiles", "position", "Å", centre);
+    for (std::size_t k = 0; k < profiles_.size(); ++k) {
+      r.add_column(prefix + "_profiles", fmt::format("t={:.3f}", profile_t_[k]), "Å", profiles_[k]);
+    }
+  }
+}
+
+}  // namespace pbms::coupling

@@ -1,0 +1,20 @@
+#include "pbms/coupling/coupling_scheme.hpp"
+
+namespace pbms::coupling {
+
+CouplingScheme::CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link,
+                               InterfaceTreatment treatment)
+    : sides_(std::move(sides)), link_(link), treatment_(treatment) {}
+
+void CouplingScheme::step() {
+  if (treatment_ != InterfaceTreatment::kNone) link_.share_partners();
+  for (GridSide* s : sides_) s->compute_forces();
+  if (treatment_ == InterfaceTreatment::kMomentumConserving) link_.return_reactions();
+  for (GridSide* s : sides_) s->map_to_grid();
+  link_.sum_nodes(lanes::kMass, lanes::kMassMomentumForce);
+  for (GridSide* s : sides_) s->update_and_map_back();
+  link_.sum_nodes(lanes::kMomentum, lanes::kRemappedMomentum);
+  for (GridSide* s : sides_) s->finish_step();
+}
+
+}  // namespace pbms::coupling

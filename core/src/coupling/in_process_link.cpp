@@ -1,0 +1,55 @@
+#include "pbms/coupling/in_process_link.hpp"
+
+#include "pbms/grid/for_each_node.hpp"
+
+namespace pbms::coupling {
+
+InProcessLink::InProcessLink(ParticleSide& particles, ContinuumSide& continuum)
+    : particles_(particles), continuum_(continuum) {}
+
+void InProcessLink::share_partners() {
+  const ContinuumSide::Points p = continuum_.partner_points();
+  const PeriodicLengths images = particles_.partner_images();
+  std::vector<GhostPoint> partners;
+  partner_point_.clear();
+  for (std::size_t i = 0; i < p.id.size(); ++i) {
+    for (int sz = -1; sz <= 1; ++sz)
+      for (int sy = -1; sy <= 1; ++sy)
+        for (int sx = -1; sx <= 1; ++sx) {
+          const std::array<int, 3> s{sx, sy, sz};
+          bool ok = true;
+          Vec3 x = p.x[i];
+          for (std::size_t a = 0; a < 3; ++a) {
+            if (s[a] != 0 && images.length[a] <= 0.0) ok = false;
+            x[a] += s[a] * images.length[a];
+          }
+          if (!ok) continue;
+          partners.push_back({p.id[i], x, p.v[i], p.mass[i]});
+          partner_point_.push_back(i);
+        }
+  }
+  particles_.take_partners(partners);
+}
+
+void InProcessLink::return_reactions() {
+  const std::vector<Vec3> on_partner = particles_.partner_forces();
+  std::vector<Vec3> force(continuum_.partner_points().id.size(), Vec3{0.0, 0.0, 0.0});
+  for (std::size_t k = 0; k < on_partner.size(); ++k) {
+    for (std::size_t a = 0; a < 3; ++a) force[partner_point_[k]][a] += on_partner[k][a];
+  }
+  continuum_.take_reactions(std::move(force));
+}
+
+void InProcessLink::sum_nodes(int first, int count) {
+  const NodalRecords a = particles_.nodal_records();
+  const NodalRecords b = continuum_.nodal_records();
+  const auto stride_a = static_cast<std::size_t>(a.stride);
+  const auto stride_b = static_cast<std::size_t>(b.stride);
+  grid::for_each_node(a.nodes.intersected(b.nodes), [&](const std::array<int, 3>& ijk) {
+    double* ra = a.data + static_cast<std::size_t>(a.nodes.local_index(ijk)) * stride_a;
+    double* rb = b.data + static_cast<std::size_t>(b.nodes.local_index(ijk)) * stride_b;
+    for (int c = first; c < first + count; ++c) ra[c] = rb[c] = ra[c] + rb[c];
+  });
+}
+
+}  // namespace pbms::coupling

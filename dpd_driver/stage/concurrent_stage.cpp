@@ -1,0 +1,241 @@
+#include "concurrent_stage.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "dpd_model.hpp"
+#include "engine/concurrent_dpd_side.hpp"
+#include "engine/dpd_engine.hpp"
+#include "engine/dpd_grid_step.hpp"
+#include "kernels/periodic_wrap.hpp"
+#include "pbms/coupling/body_handover.hpp"
+#include "pbms/coupling/concurrent_params.hpp"
+#include "pbms/coupling/concurrent_probes.hpp"
+#include "pbms/coupling/coupling_scheme.hpp"
+#include "pbms/coupling/cross_program_link.hpp"
+#include "pbms/coupling/scalar_across_programs.hpp"
+#include "pbms/error.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::dpd {
+namespace {
+
+using coupling::ConcurrentParams;
+using coupling::Solver;
+
+// id, x, v, mass, group bits: what mpm_driver gets of each of its points.
+constexpr std::size_t kRowWidth = 9;
+
+struct SplitBody {
+  DpdParticles dpd;
+  std::vector<double> mpm_rows;
+};
+
+SplitBody split_body(const DpdParticles& all, const ConcurrentParams& cp) {
+  SplitBody s;
+  s.dpd.mass_per_type = all.mass_per_type;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (cp.solver_at(all.x[i]) == Solver::kMpm) {
+      s.mpm_rows.insert(s.mpm_rows.end(), {static_cast<double>(all.id[i]), all.x[i][0], all.x[i][1],
+                                           all.x[i][2], all.v[i][0], all.v[i][1], all.v[i][2],
+                                           all.mass(i), static_cast<double>(all.group_mask[i])});
+      continue;
+    }
+    s.dpd.add(all.id[i], all.type[i], all.x[i], all.v[i]);
+    s.dpd.image.back() = all.image[i];
+    s.dpd.internal_energy.back() = all.internal_energy[i];
+    s.dpd.group_mask.back() = all.group_mask[i];
+  }
+  return s;
+}
+
+// The cells a set of positions touches, grown by `margin`, as nodes.
+grid::NodeBox nodes_around(const std::vector<Vec3>& x, const grid::RegularGrid& g, double margin) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  for (const auto& p : x) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  grid::NodeBox b;
+  if (x.empty()) return b;
+  for (std::size_t a = 0; a < 3; ++a) {
+    b.lo[a] = static_cast<int>(std::floor((lo[a] - margin - g.origin()[a]) / g.cell_size()));
+    b.hi[a] = static_cast<int>(std::floor((hi[a] + margin - g.origin()[a]) / g.cell_size())) + 2;
+  }
+  return b.intersected(g.node_box());
+}
+
+// The nodes both parts may deposit on. On periodic axes the whole axis:
+// the plan folds images onto their owners.
+grid::NodeBox interface_band(const SplitBody& body, const ConcurrentParams& cp, double reach) {
+  std::vector<Vec3> mpm;
+  for (std::size_t r = 0; r < body.mpm_rows.size(); r += kRowWidth) {
+    mpm.push_back({body.mpm_rows[r + 1], body.mpm_rows[r + 2], body.mpm_rows[r + 3]});
+  }
+  const double margin = cp.band_margin + reach;
+  grid::NodeBox band =
+      nodes_around(body.dpd.x, cp.grid, margin).intersected(nodes_around(mpm, cp.grid, margin));
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (cp.periodic[a] && !band.empty()) {
+      band.lo[a] = 0;
+      band.hi[a] = cp.grid.cells()[a] + 1;
+    }
+  }
+  return band;
+}
+
+std::string header_yaml(const std::vector<std::string>& group_names, const grid::NodeBox& band,
+                        double reach) {
+  YAML::Node h;
+  h["groups"] = group_names;
+  h["band_lo"] = std::vector<int>(band.lo.begin(), band.lo.end());
+  h["band_hi"] = std::vector<int>(band.hi.begin(), band.hi.end());
+  h["reach"] = reach;
+  YAML::Emitter out;
+  out << YAML::Flow << h;
+  return out.c_str();
+}
+
+DpdGridSettings grid_settings(const ConcurrentParams& cp, const DpdModel& model) {
+  DpdGridSettings s;
+  s.cell_size = cp.grid.cell_size();
+  s.flip = cp.flip;
+  for (const auto& m : model.group_motions) s.rigid.push_back({m.mask, m.velocity, m.free_body});
+  return s;
+}
+
+// The DPD part's owned particles, at unwrapped positions.
+struct DpdView {
+  std::vector<Vec3> x;
+  std::vector<double> mass;
+  coupling::ParticleView view(const DpdEngine& e) {
+    const DpdParticles& p = e.particles();
+    const OrthogonalBox& box = e.domain().box();
+    x.resize(e.owned());
+    mass.resize(e.owned());
+    for (std::size_t i = 0; i < e.owned(); ++i) {
+      for (int a = 0; a < 3; ++a) x[i][a] = p.x[i][a] + p.image[i][a] * box.length(a);
+      mass[i] = p.mass(i);
+    }
+    return {e.owned(), p.id, x, p.v, mass, p.group_mask};
+  }
+};
+
+}  // namespace
+
+void ConcurrentStage::run(StageContext& ctx) {
+  const YAML::Node& p = ctx.params();
+  const ConcurrentParams cp = coupling::concurrent_params(p);
+  const MPI_Comm inter = ctx.peer("mpm_driver");
+  if (inter == MPI_COMM_NULL) {
+    throw Error(fmt::format("stage '{}': mpm_driver is not running", ctx.stage()));
+  }
+  const YAML::Node material = ctx.material(p["material"].as<std::string>());
+  DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
+  // A state from an earlier stage may lie a little outside the box on a
+  // periodic axis (positions wrap at list builds only); the regions see it
+  // inside.
+  wrap_periodic_axes(model.particles, model.box, model.particles.size());
+  SplitBody body = split_body(model.particles, cp);
+  const double reach = std::max(model.pair->cutoff(), model.settings.friction.cutoff);
+  const grid::NodeBox band = interface_band(body, cp, reach);
+  coupling::hand_over(inter, ctx.comm(),
+                      {header_yaml(model.group_names, band, reach), body.mpm_rows});
+  const auto dpd_count = static_cast<double>(body.dpd.size());
+  const auto mpm_count = static_cast<double>(body.mpm_rows.size() / kRowWidth);
+
+  DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
+                   std::move(body.dpd));
+  engine.set_prescribed_groups(model.prescribed_mask);
+  engine.set_rigid_bodies(model.rigid_bodies);
+  DpdGridStep grid(engine, grid_settings(cp, model), cp.grid, cp.periodic);
+  ConcurrentDpdSide side(engine, grid, 0);
+  int remote = 0;
+  MPI_Comm_remote_size(inter, &remote);
+  const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
+  coupling::CrossProgramLink link(inter, side, grid.partition(), theirs, band, reach);
+  coupling::CouplingScheme scheme({&side}, link, cp.interface);
+
+  DpdView view;
+  coupling::ConcurrentProbes probes(ctx.comm(), cp, model.group_names,
+                                    0.5 * material["lattice_constant"].as<double>(),
+                                    view.view(engine));
+  // The whole body's mass and momentum: this part's and mpm_driver's.
+  const double body_mass =
+      coupling::swap_scalar(inter, ctx.comm(), dpd_count * engine.particles().mass_per_type[0]) +
+      dpd_count * engine.particles().mass_per_type[0];
+  std::vector<double> opening_t, opening;
+  std::array<double, 3> p0{};
+  double worst_dp = 0.0;
+  auto sample = [&](std::int64_t n) {
+    const auto v = view.view(engine);
+    probes.sample(n, v);
+    std::array<double, 3> total{};
+    for (std::size_t a = 0; a < 3; ++a) {
+      total[a] =
+          probes.momentum()[a] + coupling::swap_scalar(inter, ctx.comm(), probes.momentum()[a]);
+    }
+    if (n == 0) p0 = total;
+    for (std::size_t a = 0; a < 3; ++a) worst_dp = std::max(worst_dp, std::abs(total[a] - p0[a]));
+    if (cp.opening) {
+      const double mine = probes.displacement(cp.opening->first, v);
+      opening_t.push_back(static_cast<double>(n) * cp.time_step);
+      opening.push_back(coupling::swap_scalar(inter, ctx.comm(), mine) - mine);
+    }
+  };
+
+  probes.track(0, view.view(engine));
+  sample(0);
+  const auto started = std::chrono::steady_clock::now();
+  for (std::int64_t n = 1; n <= cp.steps; ++n) {
+    set_current_step(n);
+    scheme.step();
+    probes.track(n, view.view(engine));
+    if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
+    ctx.progress(n, cp.steps, static_cast<double>(n) * cp.time_step, "concurrent");
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  auto& r = ctx.results();
+  r.attributes["interface"] = p["interface"].as<std::string>();
+  r.add_scalar("dpd_particles", dpd_count, "1");
+  r.add_scalar("mpm_points", mpm_count, "1");
+  r.add_scalar("dpd_temperature", engine.thermo(false).temperature, "K");
+  // c = sqrt(E / rho) of the MPM material, bar Å³/(g/mol) to Å²/ps².
+  const double a = p["continuum"]["lattice_constant"]
+                       ? p["continuum"]["lattice_constant"].as<double>()
+                       : material["lattice_constant"].as<double>();
+  const double rho = 4.0 * material["mass"].as<double>() / (a * a * a);
+  const double c = std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
+  r.add_scalar("momentum_change", worst_dp / (body_mass * c), "1");
+  if (cp.opening && !opening.empty()) {
+    r.add_column("interface", "time", "ps", opening_t);
+    r.add_column("interface", "opening", "Å", opening);
+    r.add_scalar("interface_opening", opening.back() - opening.front(), "Å");
+    double most = 0.0;
+    for (const double o : opening) most = std::max(most, std::abs(o - opening.front()));
+    r.add_scalar("max_interface_opening", most, "Å");
+  }
+  if (cp.steps > 0 && seconds > 0.0) {
+    r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
+  }
+  probes.report(r, "dpd");
+  const auto& prof = link.nodal_profile();
+  r.add_scalar("nodal_sum_bytes_per_step",
+               static_cast<double>(prof.bytes_sent) / std::max<double>(1.0, cp.steps), "1");
+  r.add_scalar(
+      "partner_bytes_per_step",
+      static_cast<double>(link.partner_profile().bytes_received) / std::max<double>(1.0, cp.steps),
+      "1");
+}
+
+}  // namespace pbms::dpd

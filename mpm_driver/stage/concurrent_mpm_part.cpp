@@ -1,0 +1,140 @@
+#include "concurrent_mpm_part.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "engine/concurrent_mpm_side.hpp"
+#include "engine/mpm_engine.hpp"
+#include "materials/linear_elastic.hpp"
+#include "pbms/coupling/body_handover.hpp"
+#include "pbms/coupling/concurrent_params.hpp"
+#include "pbms/coupling/concurrent_probes.hpp"
+#include "pbms/coupling/coupling_scheme.hpp"
+#include "pbms/coupling/cross_program_link.hpp"
+#include "pbms/coupling/scalar_across_programs.hpp"
+#include "pbms/error.hpp"
+
+namespace pbms::mpm {
+namespace {
+
+constexpr std::size_t kRowWidth = 9;  // id, x, v, mass, group bits
+
+// The handed-over points on the shared grid. Rigid and frozen groups with
+// points here are held at their velocity, as an MPM grip is.
+MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover& body,
+                  const std::vector<std::string>& groups, const YAML::Node& motion, double volume) {
+  MpmModel m;
+  m.grid = cp.grid;
+  m.periodic = cp.periodic;
+  m.options.flip = cp.flip;
+  m.options.units = UnitSystem::metal();
+  // The DPD part's nodal update skips only empty nodes; the shared nodes
+  // must be updated alike.
+  m.options.small_mass_fraction = 0.0;
+  m.group_names = groups;
+  for (std::size_t r = 0; r + kRowWidth <= body.rows.size(); r += kRowWidth) {
+    const double* d = &body.rows[r];
+    MaterialPointState s;
+    s.density = d[7] / volume;
+    m.points.add(std::llround(d[0]), {d[1], d[2], d[3]}, volume, s, 0,
+                 static_cast<std::uint32_t>(std::llround(d[8])));
+    m.points.v.back() = {d[4], d[5], d[6]};
+    m.points.mass.back() = d[7];
+  }
+  for (const auto& mo : motion) {
+    const auto kind = mo["kind"].as<std::string>();
+    if (kind != "rigid" && kind != "frozen") continue;
+    PointVelocity pv;
+    pv.group_mask = m.group_mask(mo["group"].as<std::string>());
+    pv.axis = {true, true, true};
+    if (kind == "rigid") {
+      const auto v = mo["velocity"].as<std::vector<double>>();
+      pv.velocity = {v[0], v[1], v[2]};
+    }
+    m.bc.point_velocities.push_back(pv);
+  }
+  return m;
+}
+
+coupling::ParticleView view_of(const MaterialPoints& p) {
+  return {p.size(), p.id, p.x, p.v, p.mass, p.groups};
+}
+
+}  // namespace
+
+config::StageKindSpec ConcurrentMpmPart::spec() {
+  config::StageKindSpec s;
+  s.kind = "concurrent_mpm_part";
+  s.program = "mpm_driver";
+  s.doc = "mpm_driver's part of a dpd_driver `concurrent` stage";
+  s.internal = true;
+  return s;
+}
+
+void ConcurrentMpmPart::run(StageContext& ctx) {
+  const YAML::Node& p = ctx.params();
+  const coupling::ConcurrentParams cp = coupling::concurrent_params(p);
+  const MPI_Comm inter = ctx.peer("dpd_driver");
+  if (inter == MPI_COMM_NULL) {
+    throw Error(fmt::format("stage '{}': dpd_driver is not running", ctx.stage()));
+  }
+  const coupling::Handover body = coupling::take_over(inter, ctx.comm());
+  const YAML::Node header = YAML::Load(body.header);
+  const auto groups = header["groups"].as<std::vector<std::string>>();
+  const auto lo = header["band_lo"].as<std::vector<int>>();
+  const auto hi = header["band_hi"].as<std::vector<int>>();
+  const grid::NodeBox band{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+  const double reach = header["reach"].as<double>();
+  const YAML::Node material = ctx.material(p["material"].as<std::string>());
+  const double a = p["continuum"]["lattice_constant"]
+                       ? p["continuum"]["lattice_constant"].as<double>()
+                       : material["lattice_constant"].as<double>();
+  const double volume = a * a * a / 4.0;  // one fcc site
+
+  MaterialSet materials;
+  materials.models.push_back(std::make_unique<LinearElastic>(cp.youngs_modulus, cp.poisson_ratio));
+  materials.names.push_back("continuum");
+  materials.density.push_back(material["mass"].as<double>() / volume);
+  MpmEngine engine(ctx.comm(), model_of(cp, body, groups, p["motion"], volume),
+                   std::move(materials));
+  ConcurrentMpmSide side(engine, cp.time_step);
+  int remote = 0;
+  MPI_Comm_remote_size(inter, &remote);
+  const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
+  coupling::CrossProgramLink link(inter, side, engine.partition(), theirs, band, reach);
+  coupling::CouplingScheme scheme({&side}, link, cp.interface);
+
+  coupling::ConcurrentProbes probes(ctx.comm(), cp, groups, 0.5 * a, view_of(engine.points()));
+  const double mass = static_cast<double>(engine.total_points()) * material["mass"].as<double>();
+  (void)coupling::swap_scalar(inter, ctx.comm(), mass);
+  std::vector<double> stored;
+  auto sample = [&](std::int64_t n) {
+    const auto v = view_of(engine.points());
+    probes.sample(n, v);
+    for (std::size_t k = 0; k < 3; ++k) {
+      (void)coupling::swap_scalar(inter, ctx.comm(), probes.momentum()[k]);
+    }
+    if (cp.opening) {
+      (void)coupling::swap_scalar(inter, ctx.comm(), probes.displacement(cp.opening->second, v));
+    }
+    double e = engine.solver().energy(engine.points()).stored;
+    MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());
+    stored.push_back(e);
+  };
+  probes.track(0, view_of(engine.points()));
+  sample(0);
+  for (std::int64_t n = 1; n <= cp.steps; ++n) {
+    set_current_step(n);
+    scheme.step();
+    probes.track(n, view_of(engine.points()));
+    if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
+  }
+  auto& r = ctx.results();
+  probes.report(r, "mpm");
+  r.add_column("mpm_ledger", "stored_energy", "eV", stored);
+}
+
+}  // namespace pbms::mpm

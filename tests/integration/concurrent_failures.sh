@@ -1,0 +1,59 @@
+source "$(dirname "$0")/lib.sh"
+# Failures in a concurrent DPD/MPM stage end the whole job, never hang:
+# SIGKILL of an mpm_driver rank and of the dpd_driver rank mid-stage each end
+# it within 10 s, non-zero, naming the program, rank, stage and step; a
+# material point that inverts (an MPM time step far above its CFL bound)
+# and a DPD flyer launched off the grid each stop both programs with a
+# message naming the program, particle and step.
+CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
+
+kill_one() {  # PROGRAM WORLD_RANK EXPECTED_PROGRAM_RANK
+  local program=$1 world=$2 expect=$3
+  rm -rf runs
+  sed 's/steps: 300/steps: 200000/' "$CONFIG" > long.yaml
+  "$PBMS" run long.yaml > out.txt 2> err.txt &
+  local pid=$! run=runs/concurrent_small victim=""
+  for _ in $(seq 1 600); do
+    if [ -f "$run/manifest.yaml" ] && grep -q "step: [1-9]" "$run/manifest.yaml"; then break; fi
+    kill -0 $pid 2>/dev/null || { cat out.txt err.txt; fail "job ended before the kill"; }
+    sleep 0.1
+  done
+  for p in $(pgrep -f "build/bin/$program"); do
+    [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" == */$program ]] || continue
+    [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] || continue
+    if tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$world"; then victim=$p; fi
+  done
+  [ -n "$victim" ] || fail "no $program process with world rank $world found"
+  local start rc=0 elapsed
+  start=$(date +%s.%N)
+  kill -9 "$victim"
+  wait $pid || rc=$?
+  elapsed=$("$PY" -c "import time; print(round($(date +%s.%N) - $start, 2))")
+  echo "killed $program (world rank $world): exit code $rc after ${elapsed}s"
+  grep "error\|failed" err.txt | head -2 || true
+  [ "$rc" -ne 0 ] || fail "job exited 0 after $program was killed"
+  "$PY" -c "import sys; sys.exit(0 if $elapsed < 10 else 1)" || fail "job took ${elapsed}s to end"
+  grep -q "$program rank $expect" err.txt || fail "message does not name $program rank $expect"
+  grep -q "stage 'impact'" err.txt || fail "message does not name the stage"
+  grep -q "step [1-9]" err.txt || fail "message does not name the step"
+}
+
+fails_with() {  # NAME SED_EXPRESSION EXPECTED_TEXT
+  local name=$1 edit=$2 expect=$3 rc=0 start elapsed
+  sed "$edit; s/name: concurrent_small/name: $name/" "$CONFIG" > "$name.yaml"
+  start=$(date +%s.%N)
+  timeout 120 "$PBMS" run "$name.yaml" > out.txt 2> err.txt || rc=$?
+  elapsed=$("$PY" -c "import time; print(round($(date +%s.%N) - $start, 2))")
+  echo "$name: exit code $rc after ${elapsed}s"
+  grep "error\|failed" err.txt | head -2 || true
+  [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "$name: exit code $rc (124: it hung)"
+  grep -q "$expect" err.txt || fail "$name: message does not say '$expect'"
+  grep -q "step [0-9]" err.txt || fail "$name: message does not name the step"
+}
+
+# World ranks: 0 coupler, 1 dpd_driver, 2 and 3 mpm_driver.
+kill_one mpm_driver 3 1
+kill_one dpd_driver 1 0
+fails_with mpm_unstable 's/youngs_modulus: 91 GPa/youngs_modulus: 91000000 GPa/' "mpm_driver rank [01] in stage 'impact' at step"
+fails_with dpd_off_grid 's/velocity: \[5, 0, 0\]/velocity: [-3000, 0, 0]/' "dpd_driver rank 0 in stage 'impact' at step"
+echo "1 passed, 0 failed"
