@@ -50,6 +50,52 @@ DomainDecomposition::DomainDecomposition(MPI_Comm comm, const OrthogonalBox& box
   }
 }
 
+DomainDecomposition::DomainDecomposition(MPI_Comm comm, const OrthogonalBox& box, double reach,
+                                         const grid::GridPartition& partition)
+    : comm_(comm), box_(box) {
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &size_);
+  if (partition.ranks() != size_) {
+    throw Error(fmt::format("DPD decomposition: a grid partition over {} ranks given to {} ranks",
+                            partition.ranks(), size_));
+  }
+  dims_ = partition.dims();
+  const int r = rank_;
+  coords_ = {r % dims_[0], (r / dims_[0]) % dims_[1], r / (dims_[0] * dims_[1])};
+  const grid::RegularGrid& g = partition.grid();
+  const grid::CellBox cells = partition.cells_of(rank_);
+  for (int a = 0; a < 3; ++a) {
+    const auto aa = static_cast<std::size_t>(a);
+    // The solver's patch starts at origin + lo h, computed the same way,
+    // so a particle this rank owns is inside its patch to the last bit.
+    sub_lo_[a] = g.origin()[aa] + cells.lo[aa] * g.cell_size();
+    sub_hi_[a] = g.origin()[aa] + cells.hi[aa] * g.cell_size();
+    if (box.periodic[aa] && coords_[aa] == 0) sub_lo_[a] = box.lo[aa];
+    if (box.periodic[aa] && coords_[aa] + 1 == dims_[aa]) sub_hi_[a] = box.hi[aa];
+  }
+  // Ghosts travel one hop: the neighbour that passes them on must hold
+  // every particle within reach of the face, which an outermost rank on a
+  // free axis does whatever its thickness. Every rank checks every box, so
+  // all throw together.
+  for (int q = 0; q < size_; ++q) {
+    const grid::CellBox c = partition.cells_of(q);
+    for (int a = 0; a < 3; ++a) {
+      const auto aa = static_cast<std::size_t>(a);
+      if (dims_[aa] == 1) continue;
+      const bool outermost = c.lo[aa] == 0 || c.hi[aa] == g.cells()[aa];
+      if (!box.periodic[aa] && outermost) continue;
+      const double thickness = (c.hi[aa] - c.lo[aa]) * g.cell_size();
+      if (thickness < reach) {
+        throw Error(fmt::format(
+            "DPD decomposition: the grid partition's box of rank {} is {:.4g} Å thick along {}, "
+            "less than one interaction reach ({:.4g} Å = cutoff + skin); use fewer ranks or a "
+            "larger system",
+            q, thickness, "xyz"[a], reach));
+      }
+    }
+  }
+}
+
 bool DomainDecomposition::owns(const Vec3& x) const {
   for (int a = 0; a < 3; ++a) {
     if (!split(a)) continue;

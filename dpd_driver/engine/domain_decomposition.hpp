@@ -4,6 +4,10 @@
 // ghost volume), among those whose sub-boxes are at least one interaction
 // reach thick on every split axis, so that ghosts come from face
 // neighbours only (one hop per direction, as LAMMPS' brick comm).
+//
+// The DPD/MPM-grid model takes another split instead: the cell boxes of an
+// MPM grid's partition, so that every particle a rank owns lies in the
+// rank's own cells when it is mapped to the grid.
 #pragma once
 
 #include <mpi.h>
@@ -11,6 +15,7 @@
 #include <array>
 
 #include "kernels/orthogonal_box.hpp"
+#include "pbms/grid/grid_partition.hpp"
 
 namespace pbms::dpd {
 
@@ -20,6 +25,16 @@ class DomainDecomposition {
   // reach. Throws pbms::Error naming the box, reach and rank count when no
   // grid has sub-boxes thick enough.
   DomainDecomposition(MPI_Comm comm, const OrthogonalBox& box, double reach);
+  // The process grid and cell boundaries of `partition` (over the ranks
+  // of comm): rank r's sub-box is partition.cells_of(r) in space, so that
+  // a particle the decomposition hands to a rank is one the grid solver
+  // of that rank can map. On periodic axes the outermost boundaries are
+  // the box's faces; on free ones the outermost ranks own everything
+  // beyond (as partition.owner_of clamps). Throws pbms::Error when the
+  // rank counts differ, or when a sub-box that must pass ghosts on (any
+  // but the outermost on a free axis) is thinner than reach.
+  DomainDecomposition(MPI_Comm comm, const OrthogonalBox& box, double reach,
+                      const grid::GridPartition& partition);
 
   [[nodiscard]] MPI_Comm comm() const { return comm_; }
   [[nodiscard]] int rank() const { return rank_; }

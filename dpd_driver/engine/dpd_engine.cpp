@@ -85,10 +85,10 @@ void DpdEngine::set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>
   if (is_shardlow(settings_.scheme)) {
     throw Error("DPD engine: partner particles need the velocity_verlet or nve scheme");
   }
-  if (domain_.size() > 1 || pair_->name() == "sutton_chen") {
-    throw Error(fmt::format(
-        "DPD engine: partner particles need a pair style without densities (got {}) on one rank",
-        pair_->name()));
+  if (pair_->name() == "sutton_chen") {
+    throw Error(
+        fmt::format("DPD engine: partner particles need a pair style without densities (got {})",
+                    pair_->name()));
   }
   partners_.truncate(0);
   for (std::size_t k = 0; k < x.size(); ++k) partners_.add(id[k], type, x[k], v[k]);
@@ -115,6 +115,17 @@ void DpdEngine::rebuild() {
     sweep_order_->build(particles_, domain_.list_box(),
                         [this](const Vec3& centre) { return domain_.owns(centre); });
   }
+}
+
+void DpdEngine::decompose_as(const grid::GridPartition& partition) {
+  domain_ = DomainDecomposition(comm(), domain_.box(),
+                                interaction_cutoff(*pair_, settings_) + settings_.skin, partition);
+  particles_.truncate(owned_);
+  wrap_periodic_axes(particles_, domain_.box(), owned_);
+  if (domain_.size() > 1) redistribute_particles(domain_, particles_);
+  owned_ = particles_.size();
+  rebuild();
+  compute_forces(Tally::kForcesOnly);
 }
 
 void DpdEngine::update_neighbours() {

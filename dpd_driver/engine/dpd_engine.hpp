@@ -72,9 +72,11 @@ class DpdEngine {
   // list is built, so that owned particles take pair forces from them
   // (conservative, dissipative and random, keyed by their ids). They are
   // never integrated. While a set is given the list is rebuilt at every
-  // update_neighbours, because the set changes from step to step. Throws
-  // pbms::Error for a Shardlow scheme or a many-body pair style (its
-  // densities would need the partners' own neighbours).
+  // update_neighbours, because the set changes from step to step. In a
+  // decomposed run each rank passes the partners within reach of its own
+  // sub-box, imaged along the axes the ranks split. Throws pbms::Error for
+  // a Shardlow scheme or a many-body pair style (its densities would need
+  // the partners' own neighbours).
   void set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v,
                     const std::vector<std::int64_t>& id, int type);
   // The force each partner took from this rank's particles at the last
@@ -94,6 +96,13 @@ class DpdEngine {
   // Ghosts follow their owners, or when a particle moved more than half
   // the skin: wrap, migrate, new ghosts and neighbour list.
   void update_neighbours();
+  // Wrap, migrate, ghosts and list now, however little the particles
+  // moved: the grid model's ranks must own exactly their cells' particles.
+  void rebuild_neighbours() { rebuild(); }
+  // Takes the sub-boxes of `partition`'s cells (the grid model): every
+  // particle to its new owner, then ghosts, list and forces anew.
+  // Collective; throws as DomainDecomposition's partition constructor.
+  void decompose_as(const grid::GridPartition& partition);
   // The step count moves on (it keys the pair noise) for a scheme that
   // moved the particles itself (DpdGridStep).
   void count_step() { ++step_; }

@@ -8,6 +8,7 @@
 #include "materials/stressless_particle.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/shape_function.hpp"
+#include "pbms/mpi/comm.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::dpd {
@@ -39,6 +40,10 @@ grid::RegularGrid grid_over(const OrthogonalBox& box, const DpdGridSettings& s) 
   return grid::RegularGrid(origin, h, cells);
 }
 
+void allreduce_sum(MPI_Comm comm, double* data, int n) {
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, data, n, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+}
+
 }  // namespace
 
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
@@ -53,25 +58,42 @@ DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings,
     throw Error(fmt::format("DPD/MPM grid: the cell size {:g} Å is not the grid's spacing {:g} Å",
                             settings.cell_size, grid.cell_size()));
   }
+  // The engine wraps into the box and the solver into the grid: on a
+  // periodic axis both must be the same interval.
+  const OrthogonalBox& box = engine.domain().box();
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (periodic[a] != box.periodic[a]) {
+      throw Error(fmt::format(
+          "DPD/MPM grid: the grid and the DPD box differ in periodicity along {}", "xyz"[a]));
+    }
+    const double tolerance = 1e-9 * box.length(static_cast<int>(a));
+    if (box.periodic[a] && (std::abs(grid.origin()[a] - box.lo[a]) > tolerance ||
+                            std::abs(grid.upper()[a] - box.hi[a]) > tolerance)) {
+      throw Error(fmt::format(
+          "DPD/MPM grid: along periodic {} the grid spans [{:g}, {:g}] Å, the DPD box [{:g}, "
+          "{:g}] Å",
+          "xyz"[a], grid.origin()[a], grid.upper()[a], box.lo[a], box.hi[a]));
+    }
+  }
   init(grid, periodic);
 }
 
 void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic) {
-  const DpdEngine& engine = engine_;
   const DpdGridSettings& settings = settings_;
-  if (engine.domain().size() > 1) {
-    throw Error("DPD/MPM grid: the grid model runs on one dpd_driver rank for now");
-  }
-  const double cutoff = engine.settings().friction.cutoff;
-  if (engine.settings().scheme != DpdScheme::kNve && !(settings.cell_size < cutoff)) {
+  const double cutoff = engine_.settings().friction.cutoff;
+  if (engine_.settings().scheme != DpdScheme::kNve && !(settings.cell_size < cutoff)) {
     throw Error(fmt::format(
         "DPD/MPM grid: the cell edge {:g} Å must be below the DPD cutoff {:g} Å (seed §2.4)",
         settings.cell_size, cutoff));
   }
-  const OrthogonalBox& box = engine.domain().box();
-  partition_ = std::make_unique<grid::GridPartition>(grid, periodic, engine.domain().size());
-  halo_ = std::make_unique<mpi::HaloSum>(engine.comm(), *partition_);
-  mpm::GridPatch patch{grid, partition_->nodes_of(engine.domain().rank()), periodic, {}};
+  const OrthogonalBox& box = engine_.domain().box();
+  const int ranks = engine_.domain().size();
+  partition_ = std::make_unique<grid::GridPartition>(grid, periodic, ranks);
+  if (ranks > 1) engine_.decompose_as(*partition_);
+  halo_ = std::make_unique<mpi::HaloSum>(engine_.comm(), *partition_);
+  // One rank sums too: a periodic axis's last node layer is the first's
+  // image and must hold the whole sum, as in an MPM run.
+  mpm::GridPatch patch{grid, partition_->nodes_of(engine_.domain().rank()), periodic, {}};
   if (!halo_->empty()) {
     patch.sum_shared = [this](double* data, int components, int stride) {
       halo_->sum(data, components, stride);
@@ -88,34 +110,43 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
   // so p_I / m_I stays accurate however light the node: only empty nodes
   // are skipped.
   opt.small_mass_fraction = 0.0;
-  const DpdParticles& p = engine.particles();
+  const DpdParticles& p = engine_.particles();
   opt.reference_point_mass = *std::min_element(p.mass_per_type.begin(), p.mass_per_type.end());
-  solver_ = std::make_unique<mpm::MpmSolver>(patch, grid::ShapeFunctionRegistry::create("linear"),
-                                             std::move(materials), opt);
+  solver_ = std::make_unique<mpm::MpmSolver>(
+      std::move(patch), grid::ShapeFunctionRegistry::create("linear"), std::move(materials), opt);
   for (const auto& g : settings.rigid) {
     bc_.point_velocities.push_back({g.mask, {true, true, true}, g.velocity});
     double mass = 0.0;
-    for (std::size_t i = 0; i < engine.owned(); ++i) {
+    for (std::size_t i = 0; i < engine_.owned(); ++i) {
       if ((p.group_mask[i] & g.mask) != 0) mass += p.mass(i);
     }
     body_mass_.push_back(mass);
   }
-  // The points' volume only enters a stress term, which is zero here.
-  const double volume = box.volume() / static_cast<double>(std::max<std::size_t>(1, p.size()));
-  for (std::size_t i = 0; i < engine.owned(); ++i) {
-    mpm::MaterialPointState s;
-    s.density = p.mass(i) / volume;
-    points_.add(p.id[i], p.x[i], volume, s, 0, p.group_mask[i]);
-    points_.mass.back() = p.mass(i);
+  if (!body_mass_.empty()) {
+    allreduce_sum(engine_.comm(), body_mass_.data(), static_cast<int>(body_mass_.size()));
   }
+  point_volume_ =
+      box.volume() / static_cast<double>(std::max<std::int64_t>(1, engine_.total_particles()));
+  load_points();
 }
 
 void DpdGridStep::load_points() {
   const DpdParticles& p = engine_.particles();
-  forces_.resize(engine_.owned());
-  for (std::size_t i = 0; i < engine_.owned(); ++i) {
+  const std::size_t n = engine_.owned();
+  // Particles come and go with migration; the points' deformation and
+  // state carry nothing for stressless particles, so fresh ones do.
+  if (points_.size() != n) {
+    points_ = mpm::MaterialPoints{};
+    mpm::MaterialPointState s;
+    for (std::size_t i = 0; i < n; ++i) {
+      s.density = p.mass(i) / point_volume_;
+      points_.add(p.id[i], p.x[i], point_volume_, s, 0, p.group_mask[i]);
+    }
+  }
+  forces_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
     points_.id[i] = p.id[i];
-    points_.x[i] = p.x[i];
+    points_.x[i] = solver_->grid().wrapped(p.x[i], solver_->patch().periodic);
     points_.v[i] = p.v[i];
     points_.mass[i] = p.mass(i);
     points_.groups[i] = p.group_mask[i];
@@ -124,37 +155,52 @@ void DpdGridStep::load_points() {
   bc_.point_forces = forces_;
 }
 
-// The grid pass wraps positions on periodic axes; a jump of more than half
-// the box is a crossing, which the particle's image count records.
+// The solver takes positions wrapped into the grid and wraps them again
+// as it moves them. The engine keeps its own continuous, as velocity
+// Verlet's drift does, and wraps them (counting images) when it rebuilds:
+// a wrap here would make every step with a particle crossing a periodic
+// face a rebuild, since the list's periodic shifts predate it.
 void DpdGridStep::store_points() {
   DpdParticles& p = engine_.particles();
   const OrthogonalBox& box = engine_.domain().box();
+  const grid::RegularGrid& g = solver_->grid();
   for (std::size_t i = 0; i < engine_.owned(); ++i) {
-    for (int a = 0; a < 3; ++a) {
-      if (!box.periodic[static_cast<std::size_t>(a)]) continue;
-      const double jump = points_.x[i][a] - p.x[i][a];
-      if (jump < -0.5 * box.length(a)) ++p.image[i][a];
-      if (jump > 0.5 * box.length(a)) --p.image[i][a];
+    const mpm::Vec3 before = g.wrapped(p.x[i], box.periodic);
+    for (std::size_t a = 0; a < 3; ++a) {
+      double moved = points_.x[i][a] - before[a];
+      if (box.periodic[a]) {
+        const double length = box.length(static_cast<int>(a));
+        if (moved > 0.5 * length) moved -= length;
+        if (moved < -0.5 * length) moved += length;
+      }
+      p.x[i][a] += moved;
     }
-    p.x[i] = points_.x[i];
     p.v[i] = points_.v[i];
   }
 }
 
 void DpdGridStep::push_free_bodies() {
+  const std::size_t bodies = settings_.rigid.size();
+  if (bodies == 0) return;
   const DpdParticles& p = engine_.particles();
-  // f / m in eV/Å/(g/mol) is mvv2e Å/ps² too small.
-  const double dt = engine_.settings().dt / units::kMvv2e;
-  for (std::size_t b = 0; b < settings_.rigid.size(); ++b) {
+  std::vector<double> force(3 * bodies, 0.0);
+  for (std::size_t b = 0; b < bodies; ++b) {
     const auto& g = settings_.rigid[b];
-    if (!g.free_body || !(body_mass_[b] > 0.0)) continue;
-    mpm::Vec3 force{0.0, 0.0, 0.0};
+    if (!g.free_body) continue;
     for (std::size_t i = 0; i < engine_.owned(); ++i) {
       if ((p.group_mask[i] & g.mask) == 0) continue;
-      for (int a = 0; a < 3; ++a) force[a] += p.f[i][a];
+      for (std::size_t a = 0; a < 3; ++a) force[3 * b + a] += p.f[i][a];
     }
-    for (int a = 0; a < 3; ++a)
-      bc_.point_velocities[b].velocity[a] += dt * force[a] / body_mass_[b];
+  }
+  // A body's particles may sit on any rank; every rank must move its part
+  // of the body at one velocity.
+  allreduce_sum(engine_.comm(), force.data(), static_cast<int>(force.size()));
+  // f / m in eV/Å/(g/mol) is mvv2e Å/ps² too small.
+  const double dt = engine_.settings().dt / units::kMvv2e;
+  for (std::size_t b = 0; b < bodies; ++b) {
+    if (!settings_.rigid[b].free_body || !(body_mass_[b] > 0.0)) continue;
+    for (std::size_t a = 0; a < 3; ++a)
+      bc_.point_velocities[b].velocity[a] += dt * force[3 * b + a] / body_mass_[b];
   }
 }
 
@@ -166,10 +212,31 @@ void DpdGridStep::step() {
 }
 
 void DpdGridStep::compute_forces() {
-  engine_.update_neighbours();
+  // Also here, for what changed since the last step (a thermostat's
+  // velocities, which the ghosts' friction reads).
+  refresh_neighbours();
   engine_.compute_forces();
   push_free_bodies();
   load_points();
+}
+
+void DpdGridStep::refresh_neighbours() {
+  if (left_own_cells()) {
+    engine_.rebuild_neighbours();
+  } else {
+    engine_.update_neighbours();
+  }
+}
+
+bool DpdGridStep::left_own_cells() const {
+  const DomainDecomposition& domain = engine_.domain();
+  if (domain.size() == 1) return false;
+  const DpdParticles& p = engine_.particles();
+  int left = 0;
+  for (std::size_t i = 0; i < engine_.owned() && left == 0; ++i) left = domain.owns(p.x[i]) ? 0 : 1;
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPI_INT, MPI_MAX, domain.comm()),
+             "MPI_Allreduce (particles outside their cells)");
+  return left != 0;
 }
 
 void DpdGridStep::map_to_grid() {
@@ -190,6 +257,10 @@ void DpdGridStep::finish_step() {
   solver_->update_stress_and_move(points_, bc_, engine_.settings().dt);
   store_points();
   engine_.count_step();
+  // The engine is read between steps (thermo's energy and virial): its
+  // ghosts must follow the particles that moved. One rank has none, and
+  // its list stays valid as the positions stay continuous.
+  if (engine_.domain().size() > 1) engine_.update_neighbours();
 }
 
 }  // namespace pbms::dpd

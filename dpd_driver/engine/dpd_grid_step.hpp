@@ -17,8 +17,17 @@
 // velocity, and the nodes they touch move with it), as an MPM grip does;
 // a free rigid body's velocity first takes the net pair force on it.
 //
-// One rank for now: a decomposed run needs the DPD sub-boxes to be the
-// grid partition's, which the constructor refuses to assume.
+// On several ranks the engine takes the grid partition's split
+// (DomainDecomposition from a GridPartition) and rebuilds whenever a
+// particle has left its rank's cells, so that at each grid pass every
+// particle lies in its own rank's cells: each rank's solver works on
+// partition().nodes_of(rank), and the nodal sums over ranks are the
+// HaloSum an MPM run uses (GridPatch::sum_shared), which also folds the
+// periodic faces on one rank. Rigid groups sum mass and force over ranks.
+// Particles exactly on a node plane are the one place where ranks may
+// differ by more than round-off: a rigid group's particle there gives the
+// node beyond a weight of round-off size, which marks the node rigid or
+// not depending on how each rank's patch rounds.
 #pragma once
 
 #include <memory>
@@ -53,13 +62,17 @@ struct DpdGridSettings {
 class DpdGridStep {
  public:
   // The grid over the engine's box: whole cells on periodic axes, a margin
-  // beyond it on free ones. Throws pbms::Error when the engine runs on more
-  // than one rank, when a periodic box length is not a whole number of
-  // cells (to 1e-9), or when the cell edge is not below the DPD cutoff
-  // (seed §2.4).
+  // beyond it on free ones. On several ranks the engine's particles move
+  // to the partition's sub-boxes (collective). Throws pbms::Error when a
+  // periodic box length is not a whole number of cells (to 1e-9), when the
+  // cell edge is not below the DPD cutoff (seed §2.4), or when a sub-box
+  // that passes ghosts on is thinner than cutoff + skin.
   DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings);
-  // On a given grid (a concurrent run's shared one); settings.cell_size
-  // must be its spacing. Throws as above.
+  // On a given grid (a concurrent run's shared one) with its periodic
+  // axes, which must be the box's; this rank's nodes and their sums come
+  // from the partition of that grid over the engine's ranks.
+  // settings.cell_size must be the grid's spacing, and on each periodic
+  // axis the grid must span the box. Throws as above.
   DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings, const grid::RegularGrid& grid,
               const std::array<bool, 3>& periodic);
 
@@ -72,31 +85,43 @@ class DpdGridStep {
   void compute_forces();       // pair forces, free bodies pushed
   void map_to_grid();          // mass, momentum, pair forces to the nodes (s-1, s-2, s-3b)
   void update_and_map_back();  // nodal update, grid to particles, remap (s-4 to s-10)
-  void finish_step();          // move with the grid velocity (s-11), step counted
+  void finish_step();          // move with the grid velocity (s-11), step counted, ghosts
+                               // follow
 
   // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
   // update_and_map_back, and the remapped momentum after the latter.
   [[nodiscard]] mpm::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return solver_->grid(); }
-  // How the grid is split over the engine's ranks (one box on one rank).
+  // The split of the grid over the engine's ranks, which is also the
+  // engine's decomposition; nodal_sums() covers nodes_of(this rank).
   [[nodiscard]] const grid::GridPartition& partition() const { return *partition_; }
   [[nodiscard]] const mpm::MpmSolver& solver() const { return *solver_; }
 
  private:
   void init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic);
+  // Points as many as the owned particles, with their state and fields.
   void load_points();
   void store_points();
+  // Rebuilds when left_own_cells() or the engine's skin asks for it, and
+  // moves the ghosts along otherwise (collective).
+  void refresh_neighbours();
+  // Whether a particle on any rank has left its rank's cells since the
+  // last rebuild (collective; false on one rank). The grid pass needs each
+  // particle on the rank whose patch holds it, so that forces a rebuild
+  // (wrap, migration, ghosts, list), as a move of half the skin does.
+  [[nodiscard]] bool left_own_cells() const;
   // Free bodies: v += dt F / M, from this step's pair forces.
   void push_free_bodies();
 
   DpdEngine& engine_;
   DpdGridSettings settings_;
-  // Sums the nodes periodic images share, as an MPM run does.
+  // Addressed by halo_ and solver_, so kept at one place.
   std::unique_ptr<grid::GridPartition> partition_;
   std::unique_ptr<mpi::HaloSum> halo_;
   std::unique_ptr<mpm::MpmSolver> solver_;
   mpm::MaterialPoints points_;
+  double point_volume_ = 0.0;  // Å³; only a stress term uses it, and that is zero
   mpm::BoundaryConditions bc_;
   std::vector<mpm::Vec3> forces_;
   std::vector<double> body_mass_;  // per settings_.rigid entry, g/mol

@@ -1,5 +1,6 @@
 #include "engine/particle_migration.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -41,9 +42,18 @@ void migrate_particles(const DomainDecomposition& domain, DpdParticles& particle
     out[1].clear();
     std::size_t kept = 0;
     for (std::size_t i = 0; i < particles.size(); ++i) {
+      const double x = particles.x[i][a];
       int side = -1;  // 0 down, 1 up, -1 stays
-      if (particles.x[i][a] < domain.sub_lo(a) && !(first && !periodic)) side = 0;
-      if (particles.x[i][a] >= domain.sub_hi(a) && !(last && !periodic)) side = 1;
+      if (x < domain.sub_lo(a) && !(first && !periodic)) side = 0;
+      if (x >= domain.sub_hi(a) && !(last && !periodic)) side = 1;
+      if (side >= 0 && periodic) {
+        // Wrapped positions: one that left the first box downwards now
+        // lies near the top of the box. The way back to the sub-box that
+        // is shorter around the ring is the way it went.
+        const double below = std::fmod(domain.sub_lo(a) - x + 2.0 * box.length(a), box.length(a));
+        const double above = std::fmod(x - domain.sub_hi(a) + 2.0 * box.length(a), box.length(a));
+        side = below < above ? 0 : 1;
+      }
       if (side < 0) {
         if (kept != i) {
           particles.id[kept] = particles.id[i];
@@ -57,13 +67,6 @@ void migrate_particles(const DomainDecomposition& domain, DpdParticles& particle
         }
         ++kept;
         continue;
-      }
-      if (side == 0 && first) {
-        particles.x[i][a] += box.length(a);
-        particles.image[i][a] -= 1;
-      } else if (side == 1 && last) {
-        particles.x[i][a] -= box.length(a);
-        particles.image[i][a] += 1;
       }
       pack(particles, i, out[side]);
     }
@@ -87,6 +90,26 @@ void migrate_particles(const DomainDecomposition& domain, DpdParticles& particle
         unpack(&in[k], particles);
       }
     }
+  }
+}
+
+void redistribute_particles(const DomainDecomposition& domain, DpdParticles& particles) {
+  std::vector<double> mine;
+  mine.reserve(particles.size() * kRecordWidth);
+  for (std::size_t i = 0; i < particles.size(); ++i) pack(particles, i, mine);
+  const int ranks = domain.size();
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(counts.size(), 0);
+  const int count = static_cast<int>(mine.size());
+  mpi::check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, domain.comm()),
+             "MPI_Allgather (redistribution counts)");
+  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  mpi::check(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(),
+                            offsets.data(), MPI_DOUBLE, domain.comm()),
+             "MPI_Allgatherv (redistribution)");
+  particles.truncate(0);
+  for (std::size_t k = 0; k + kRecordWidth <= all.size(); k += kRecordWidth) {
+    if (domain.owns({all[k + 2], all[k + 3], all[k + 4]})) unpack(&all[k], particles);
   }
 }
 

@@ -183,7 +183,8 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
                            const PairFrictionTerm* friction) {
   const bool tallied = tally == Tally::kEnergyAndVirial;
   if (friction != nullptr) {
-    if (list.pair_ids() == nullptr) {
+    // An empty list (a rank with no particles) may hold no id array at all.
+    if (list.pair_ids() == nullptr && list.pair_count() > 0) {
       throw Error("DPD thermostat: the neighbour list was built without the pair ids");
     }
     return tallied

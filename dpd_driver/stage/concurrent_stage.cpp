@@ -320,13 +320,14 @@ void ConcurrentStage::run(StageContext& ctx) {
   probes.report(r, "dpd");
   r.add_column("dpd_ledger", "potential_energy", "eV", potential);
   if (tension) tension->report(r);
-  const auto& prof = link.nodal_profile();
-  r.add_scalar("nodal_sum_bytes_per_step",
-               static_cast<double>(prof.bytes_sent) / std::max<double>(1.0, cp.steps), "1");
-  r.add_scalar(
-      "partner_bytes_per_step",
-      static_cast<double>(link.partner_profile().bytes_received) / std::max<double>(1.0, cp.steps),
-      "1");
+  // Bytes the DPD part's ranks sent in the nodal sums and received as
+  // partners, per step, summed over its ranks.
+  double bytes[2] = {static_cast<double>(link.nodal_profile().bytes_sent),
+                     static_cast<double>(link.partner_profile().bytes_received)};
+  MPI_Allreduce(MPI_IN_PLACE, bytes, 2, MPI_DOUBLE, MPI_SUM, ctx.comm());
+  const double steps = std::max<double>(1.0, static_cast<double>(cp.steps));
+  r.add_scalar("nodal_sum_bytes_per_step", bytes[0] / steps, "1");
+  r.add_scalar("partner_bytes_per_step", bytes[1] / steps, "1");
 }
 
 }  // namespace pbms::dpd

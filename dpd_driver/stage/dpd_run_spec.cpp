@@ -140,8 +140,9 @@ std::vector<Param> dpd_stage_params() {
                .at_most(1)},
           "The DPD/MPM-grid model (seed §2.4, §5.2): pair forces mapped to an MPM grid, "
           "particles moved with the grid velocity, instead of velocity Verlet. Rigid, frozen "
-          "and rigid_body groups move rigidly on the grid. One rank; scheme velocity_verlet "
-          "or nve"),
+          "and rigid_body groups move rigidly on the grid. On several ranks the ranks split "
+          "the grid's cells (each box at least cutoff + skin thick where it passes ghosts on). "
+          "Scheme velocity_verlet or nve"),
       Param::real("time_step", Dimension::kTime, "Time step").def(0.01).above(0),
       Param::integer("steps", "Time steps; 0 writes the initial forces and energies")
           .require()

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "cu_cg_morse.hpp"
 #include "engine/dpd_engine.hpp"
@@ -97,11 +99,81 @@ TEST(DpdGridStep, ApproachesDpdOnlyAsTheCellsShrink) {
   EXPECT_LT(deviation[1], deviation[0]);
 }
 
+// On several ranks the grid step rebuilds (wrap, migration, ghosts, list)
+// whenever a particle has left its rank's cells, not only when one has
+// moved half the skin. On one rank rebuilding every step must change
+// nothing beyond round-off (the list order). The lazy path must not
+// rebuild at every periodic crossing, which this lattice, with sites on
+// the periodic faces, has at almost every step: the engine keeps its
+// positions continuous and only the solver's copies are wrapped. The test
+// also shows what a rebuild costs against a step.
+TEST(DpdGridStep, RebuildingEveryStepChangesOnlyRoundOff) {
+  const double cutoff = cu_cg_morse_parameters().cutoff;
+  constexpr int kSteps = 100;
+  auto lazy = crystal(8, cutoff);
+  auto eager = crystal(8, cutoff);
+  DpdGridStep lazy_grid(*lazy, {kLattice / 2.0, 1.0, 4, {}});
+  DpdGridStep eager_grid(*eager, {kLattice / 2.0, 1.0, 4, {}});
+  const long builds_before = lazy->rebuilds();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n = 0; n < kSteps; ++n) lazy_grid.step();
+  const auto t1 = std::chrono::steady_clock::now();
+  const long builds = lazy->rebuilds() - builds_before;
+  for (int n = 0; n < kSteps; ++n) lazy->rebuild_neighbours();
+  const auto t2 = std::chrono::steady_clock::now();
+  for (int n = 0; n < kSteps; ++n) {
+    eager->rebuild_neighbours();
+    eager_grid.step();
+  }
+  double dx = 0.0;
+  const auto& box = lazy->domain().box();
+  for (std::size_t i = 0; i < lazy->owned(); ++i) {
+    const auto& x = lazy->particles().x[i];
+    const auto& y = eager->particles().x[i];
+    const auto d = box.minimum_image({x[0] - y[0], x[1] - y[1], x[2] - y[2]});
+    for (int a = 0; a < 3; ++a) dx = std::max(dx, std::abs(d[a]));
+  }
+  const double us = 1e6 / (kSteps * static_cast<double>(lazy->owned()));
+  const double step = std::chrono::duration<double>(t1 - t0).count() * us;
+  const double rebuild = std::chrono::duration<double>(t2 - t1).count() * us;
+  std::printf(
+      "%zu particles, %d steps: %ld list builds; µs a particle: %.3f a step, %.3f a rebuild; "
+      "every step rebuilt vs lazily: max |dx| %.1e Å\n",
+      lazy->owned(), kSteps, builds, step, rebuild, dx);
+  EXPECT_LT(dx, 1e-11 * 8 * kLattice);
+  EXPECT_LT(builds, kSteps / 10);
+}
+
 TEST(DpdGridStep, RefusesCellsNotBelowTheCutoffAndBoxesOfPartCells) {
   const double cutoff = cu_cg_morse_parameters().cutoff;
   auto engine = crystal(4, cutoff);
   EXPECT_THROW(DpdGridStep(*engine, {cutoff + 1.0, 1.0, 4, {}}), Error);
   EXPECT_THROW(DpdGridStep(*engine, {3.0, 1.0, 4, {}}), Error);  // 28.92 Å / 3 Å
+}
+
+// A concurrent run hands the grid step its shared grid. The same grid as
+// the step's own gives the same steps; a grid that does not span a
+// periodic axis of the box is refused (the engine and the solver would
+// wrap into different intervals).
+TEST(DpdGridStep, TakesAGivenGridThatSpansThePeriodicAxes) {
+  const double cutoff = cu_cg_morse_parameters().cutoff;
+  auto own = crystal(4, cutoff);
+  auto given = crystal(4, cutoff);
+  const double h = kLattice / 2.0;
+  DpdGridStep own_grid(*own, {h, 1.0, 4, {}});
+  const std::array<bool, 3> periodic{true, true, true};
+  DpdGridStep given_grid(*given, {h, 1.0, 4, {}}, own_grid.grid(), periodic);
+  EXPECT_EQ(given_grid.partition().ranks(), 1);
+  for (int n = 0; n < 20; ++n) {
+    own_grid.step();
+    given_grid.step();
+  }
+  for (std::size_t i = 0; i < own->owned(); ++i) {
+    EXPECT_EQ(own->particles().x[i], given->particles().x[i]) << i;
+  }
+  const grid::RegularGrid shifted({-h / 2.0, 0.0, 0.0}, h, own_grid.grid().cells());
+  EXPECT_THROW(DpdGridStep(*given, {h, 1.0, 4, {}}, shifted, periodic), Error);
+  EXPECT_THROW(DpdGridStep(*given, {h, 1.0, 4, {}}, own_grid.grid(), {true, true, false}), Error);
 }
 
 // On a periodic axis the grid's last node is its first, so the seam of a

@@ -33,7 +33,26 @@ ConcurrentProbes::ConcurrentProbes(MPI_Comm comm, const ConcurrentParams& params
                                    const std::vector<std::string>& group_names, double bin,
                                    const ParticleView& start)
     : comm_(comm), p_(params), group_names_(group_names), bin_(bin) {
-  for (std::size_t i = 0; i < start.count; ++i) start_[start.id[i]] = start.x[i];
+  // Every rank keeps every particle's start, since particles migrate.
+  std::vector<double> mine;
+  for (std::size_t i = 0; i < start.count; ++i) {
+    mine.insert(mine.end(),
+                {static_cast<double>(start.id[i]), start.x[i][0], start.x[i][1], start.x[i][2]});
+  }
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size)), offsets(counts.size(), 0);
+  mpi::check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm),
+             "MPI_Allgather (probe starts)");
+  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  mpi::check(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(),
+                            offsets.data(), MPI_DOUBLE, comm),
+             "MPI_Allgatherv (probe starts)");
+  for (std::size_t k = 0; k + 4 <= all.size(); k += 4) {
+    start_[std::llround(all[k])] = {all[k + 1], all[k + 2], all[k + 3]};
+  }
   const auto a = static_cast<std::size_t>(p_.axis);
   lo_ = p_.grid.origin()[a];
   bins_ = static_cast<std::size_t>(std::ceil((p_.grid.upper()[a] - lo_) / bin_));

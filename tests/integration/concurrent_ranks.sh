@@ -1,0 +1,25 @@
+source "$(dirname "$0")/lib.sh"
+# A concurrent stage gives the same results on 1+1 and 2+2 ranks (dpd_driver
+# + mpm_driver): every summary value but the timings and the exchanged
+# bytes (more ranks, more messages) agrees to 1e-6
+# relative (summation order is all that changes).
+CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
+sed 's/launch: {dpd: 1, mpm: 2}/launch: {dpd: 1, mpm: 1}/; s/name: concurrent_small/name: r11/' "$CONFIG" > r11.yaml
+sed 's/launch: {dpd: 1, mpm: 2}/launch: {dpd: 2, mpm: 2}/; s/name: concurrent_small/name: r22/' "$CONFIG" > r22.yaml
+"$PBMS" run r11.yaml > r11.txt 2>&1 || { cat r11.txt; fail "1+1 run"; }
+"$PBMS" run r22.yaml > r22.txt 2>&1 || { cat r22.txt; fail "2+2 run"; }
+"$PY" - <<'PYEOF'
+import math, sys, yaml
+a = yaml.safe_load(open("runs/r11/summary.yaml"))["stages"]["impact"]["results"]
+b = yaml.safe_load(open("runs/r22/summary.yaml"))["stages"]["impact"]["results"]
+bad = 0
+for key, r in a.items():
+    if key in ("steps_per_second", "nodal_sum_bytes_per_step", "partner_bytes_per_step") or not isinstance(r, dict) or "value" not in r:
+        continue
+    x, y = r["value"], b[key]["value"]
+    same = (math.isnan(x) and math.isnan(y)) or abs(x - y) <= 1e-6 * max(abs(x), abs(y), 1e-12)
+    bad += not same
+    print(f"{'ok  ' if same else 'FAIL'} {key}: 1+1 {x:.9g}, 2+2 {y:.9g}")
+sys.exit(1 if bad else 0)
+PYEOF
+echo "1 passed, 0 failed"
