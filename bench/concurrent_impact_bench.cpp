@@ -27,7 +27,7 @@ using namespace pbms::testing;
 namespace {
 
 constexpr int kSteps = 100;
-const ConcurrentBar kBar{30, 10, 18, false};
+const ConcurrentBar kBar{30, 10, 18, false, false};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

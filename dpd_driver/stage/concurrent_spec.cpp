@@ -65,7 +65,12 @@ Param continuum() {
                    "Lattice constant of the DPD crystal at the run's temperature (dpd_elastic "
                    "lattice_constant): each point's volume is a³/4; default the material's")
            .above(0)
-           .referable()},
+           .referable(),
+       Param::choice("gradient", {"plain", "ddmp"},
+                     "The MPM points' gradients: plain shape-function gradients, or dual-domain "
+                     "ones (DDMP; seed §7.3, Appendix 2), blended with the plain ones by "
+                     "4 ξ (1 − ξ) per axis so that they vanish on cell faces")
+           .def(std::string("plain"))},
       "The linear elastic material of the MPM points, derived from the DPD model");
 }
 

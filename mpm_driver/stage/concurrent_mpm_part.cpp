@@ -35,6 +35,8 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover
   // The DPD part's nodal update skips only empty nodes; the shared nodes
   // must be updated alike.
   m.options.small_mass_fraction = 0.0;
+  m.options.ddmp = cp.ddmp;
+  m.options.ddmp_face_vanishing = cp.ddmp;
   m.group_names = groups;
   for (std::size_t r = 0; r + kRowWidth <= body.rows.size(); r += kRowWidth) {
     const double* d = &body.rows[r];

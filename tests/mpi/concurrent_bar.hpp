@@ -35,6 +35,7 @@ struct ConcurrentBar {
   int cells_across = 4;  // fcc cells along y and z (periodic)
   int grid_across = 7;   // grid cells across: lattice planes off the node planes
   bool all_dpd = false;  // the whole bar DPD (the all-DPD reference)
+  bool ddmp = false;     // DDMP gradients for the MPM points
 
   [[nodiscard]] double h() const { return cells_across * kLattice / grid_across; }
   [[nodiscard]] double interface() const { return 0.5 * cells_x * kLattice; }
@@ -103,6 +104,7 @@ inline MpmPart mpm_part(MPI_Comm comm, const ConcurrentBar& bar) {
   model.periodic = kPeriodic;
   model.options.units = mpm::UnitSystem::metal();
   model.options.small_mass_fraction = 0.0;  // as the DPD side's grid step
+  model.options.ddmp = model.options.ddmp_face_vanishing = bar.ddmp;
   const double volume = kLattice * kLattice * kLattice / 4.0;
   for (std::size_t i = 0; i < c.particles.size(); ++i) {
     if (bar.is_dpd(c.particles.x[i])) continue;

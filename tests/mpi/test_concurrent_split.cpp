@@ -26,7 +26,7 @@ using coupling::InterfaceTreatment;
 namespace {
 
 using namespace pbms::testing;
-const ConcurrentBar kBar;  // 8 x 4 x 4 a_cg, 7 grid cells across
+ConcurrentBar kBar;  // 8 x 4 x 4 a_cg, 7 grid cells across
 
 struct State {
   std::map<std::int64_t, std::pair<dpd::Vec3, dpd::Vec3>> by_id;  // x, v
@@ -215,4 +215,11 @@ TEST(ConcurrentSplit, EqualsMonolithicWithBothPartsDecomposed) {
                        InterfaceTreatment::kMomentumConserving}) {
     split_equals_monolithic(2, t);
   }
+}
+
+// The MPM points with DDMP gradients (the seed's recommended future work).
+TEST(ConcurrentSplit, EqualsMonolithicWithDdmpGradients) {
+  kBar.ddmp = true;
+  split_equals_monolithic(world_size() >= 4 ? 2 : 1, InterfaceTreatment::kMomentumConserving);
+  kBar.ddmp = false;
 }

@@ -44,6 +44,7 @@ ConcurrentParams concurrent_params(const YAML::Node& p) {
   c.interface = treatment(p["interface"].as<std::string>());
   c.youngs_modulus = p["continuum"]["youngs_modulus"].as<double>();
   c.poisson_ratio = p["continuum"]["poisson_ratio"].as<double>();
+  c.ddmp = p["continuum"]["gradient"].as<std::string>("plain") == "ddmp";
   c.time_step = p["time_step"].as<double>();
   c.steps = p["steps"].as<std::int64_t>();
   c.sample_every = p["sample_every"].as<std::int64_t>();

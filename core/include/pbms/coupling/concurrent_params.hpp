@@ -54,6 +54,7 @@ struct ConcurrentParams {
   InterfaceTreatment interface = InterfaceTreatment::kSeed;
   double youngs_modulus = 0.0;  // bar
   double poisson_ratio = 0.0;
+  bool ddmp = false;       // the MPM points' gradients
   double time_step = 0.0;  // ps
   std::int64_t steps = 0, sample_every = 1, particles_every = 0, profile_every = 0;
   int axis = 0;            // of the wave and the interface opening
