@@ -16,6 +16,8 @@
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/error.hpp"
+#include "pbms/grid/for_each_node.hpp"
+#include "pbms/io/grid_field_writer.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
@@ -60,6 +62,23 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover
     m.bc.point_velocities.push_back(pv);
   }
   return m;
+}
+
+// The nodes this rank writes: mass and velocity as the MPM part holds them
+// after a step, both parts' sums on the interface band's nodes.
+void write_grid(GridFieldWriter& out, const MpmEngine& engine, std::int64_t step, double t) {
+  const MpmSolver& solver = engine.solver();
+  const grid::NodeBox owned = engine.owned_nodes();
+  const auto& local = solver.patch().nodes;
+  std::vector<double> mass, vel;
+  grid::for_each_node(owned, [&](const std::array<int, 3>& ijk) {
+    const auto li = static_cast<std::size_t>(local.local_index(ijk));
+    mass.push_back(solver.nodal_mass(li));
+    const auto& v = solver.nodal_velocity(li);
+    vel.insert(vel.end(), v.begin(), v.end());
+  });
+  out.write_frame(step, t,
+                  {{"mass", "g/mol", 1, mass.data()}, {"velocity", "Å/ps", 3, vel.data()}});
 }
 
 coupling::ParticleView view_of(const MaterialPoints& p) {
@@ -146,6 +165,11 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());
     stored.push_back(e);
   };
+  std::unique_ptr<GridFieldWriter> grid_out;
+  if (cp.particles_every > 0) {
+    grid_out = std::make_unique<GridFieldWriter>(
+        ctx.comm(), (ctx.stage_dir() / "mpm_grid").string(), cp.grid, engine.owned_nodes());
+  }
   probes.track(0, view_of(engine.points()));
   sample(0);
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
@@ -153,8 +177,15 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     scheme.step();
     probes.track(n, view_of(engine.points()));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
+    if (grid_out && (n % cp.particles_every == 0 || n == cp.steps)) {
+      write_grid(*grid_out, engine, n, static_cast<double>(n) * cp.time_step);
+    }
   }
   auto& r = ctx.results();
+  if (grid_out) {
+    r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.h5").string());
+    r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.xdmf").string());
+  }
   probes.report(r, "mpm");
   r.add_column("mpm_ledger", "stored_energy", "eV", stored);
 }
