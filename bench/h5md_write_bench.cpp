@@ -4,11 +4,13 @@
 //  - gathered: every rank's rows gathered on rank 0 and sorted by id
 //    (mpi::sorted_rows), rank 0 writing alone, as dpd_run and mpm_output
 //    did before;
-//  - collective: every rank writes the particles it holds at their rows.
+//  - collective: H5mdWriter on all ranks, each passing the particles it
+//    holds (they reach the ranks whose row blocks hold them, and every rank
+//    writes its block).
 // Two layouts of the particles over the ranks: "slab", a lattice with ids
 // x fastest cut across x (runs of consecutive ids, as a domain
 // decomposition leaves them), and "scrambled", each particle on a random
-// rank in a random order (the worst case for the collective selections).
+// rank in a random order.
 // Rank 0 prints BENCH lines: the median of the frames, in ms.
 #include <mpi.h>
 #include <unistd.h>

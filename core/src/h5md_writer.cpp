@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <numeric>
 #include <tuple>
 
 #include "pbms/error.hpp"
@@ -17,76 +15,32 @@ int rank_of(MPI_Comm comm) {
   return rank;
 }
 
-// This rank's particles sorted by row: MPI-IO file views must run forward
-// through the file, and the point selection below keeps the given order.
-struct RowOrder {
-  std::vector<std::size_t> order;  // of the caller's arrays
-  std::vector<uint64_t> rows;      // ascending
-};
-
-RowOrder sort_by_row(const std::vector<uint64_t>& rows) {
-  RowOrder r;
-  r.order.resize(rows.size());
-  std::iota(r.order.begin(), r.order.end(), std::size_t{0});
-  std::sort(r.order.begin(), r.order.end(),
-            [&](std::size_t a, std::size_t b) { return rows[a] < rows[b]; });
-  r.rows.reserve(rows.size());
-  for (const std::size_t i : r.order) r.rows.push_back(rows[i]);
-  return r;
-}
-
-template <class T>
-std::vector<T> in_row_order(const T* data, const std::vector<std::size_t>& order,
-                            std::size_t width) {
-  std::vector<T> out;
-  out.reserve(order.size() * width);
-  for (const std::size_t i : order) out.insert(out.end(), data + i * width, data + (i + 1) * width);
-  return out;
-}
-
-// Selects the values of `rows` in `fspace`, `width` per row, at `frame` when
-// the dataset has a leading frame dimension (dims > 1), and the matching
-// memory space of as many values in a row. Points: a rank's particles are
-// scattered over the file once they have migrated, and a union of many
-// hyperslabs costs HDF5 far more to build than a point list.
-h5::Handle select_rows(hid_t fspace, int dims, hsize_t frame, const std::vector<uint64_t>& rows,
-                       hsize_t width) {
-  const hsize_t n = rows.size() * width;
+// The dataset's rows [offset, offset + n_local) at `frame` (a leading frame
+// dimension when dims > 1), `width` values per row, and the memory space of
+// as many values.
+h5::Handle select_block(hid_t fspace, int dims, hsize_t frame, hsize_t offset, hsize_t n_local,
+                        hsize_t width) {
+  const hsize_t n = n_local * width;
   h5::Handle mspace(H5Screate_simple(1, &n, nullptr), H5Sclose);
   if (n == 0) {
     H5Sselect_none(fspace);
     H5Sselect_none(mspace.id());
     return mspace;
   }
-  if (rows.back() - rows.front() + 1 == rows.size()) {
-    // One run (a single rank, or a rank holding one id range): one block.
-    const hsize_t start[3] = {frame, rows.front(), 0}, count[3] = {1, rows.size(), width};
-    const int skip = dims > 1 ? 0 : 1;
-    H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start + skip, nullptr, count + skip, nullptr);
-    return mspace;
-  }
-  std::vector<hsize_t> coords;
-  coords.reserve(n * static_cast<std::size_t>(dims));
-  for (const uint64_t row : rows) {
-    for (hsize_t c = 0; c < width; ++c) {
-      if (dims > 1) coords.push_back(frame);
-      coords.push_back(row);
-      if (dims == 3) coords.push_back(c);
-    }
-  }
-  H5Sselect_elements(fspace, H5S_SELECT_SET, n, coords.data());
+  const hsize_t start[3] = {frame, offset, 0}, count[3] = {1, n_local, width};
+  const int skip = dims > 1 ? 0 : 1;
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start + skip, nullptr, count + skip, nullptr);
   return mspace;
 }
 
 void write_fixed(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
-                 const void* sorted_local, const std::vector<uint64_t>& rows, hsize_t n_total,
-                 hid_t dxpl) {
+                 const void* local, hsize_t n_local, hsize_t offset, hsize_t n_total, hid_t dxpl) {
   h5::Handle fspace(H5Screate_simple(1, &n_total, nullptr), H5Sclose);
   h5::Handle ds(H5Dcreate2(parent, name.c_str(), file_type, fspace.id(), H5P_DEFAULT, H5P_DEFAULT,
                            H5P_DEFAULT),
                 H5Dclose);
-  const h5::Handle mspace = select_rows(fspace.id(), 1, 0, rows, 1);
-  H5Dwrite(ds.id(), mem_type, mspace.id(), fspace.id(), dxpl, sorted_local);
+  const h5::Handle mspace = select_block(fspace.id(), 1, 0, offset, n_local, 1);
+  H5Dwrite(ds.id(), mem_type, mspace.id(), fspace.id(), dxpl, local);
 }
 
 void write_string_array(hid_t obj, const std::string& name, const std::vector<std::string>& v) {
@@ -105,9 +59,14 @@ void write_string_array(hid_t obj, const std::string& name, const std::vector<st
 
 H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids,
                        const std::vector<int>& species)
-    : comm_(comm), rank_(rank_of(comm)), opt_(opt), rows_(comm, ids), n_total_(rows_.total()) {
+    : comm_(comm),
+      rank_(rank_of(comm)),
+      opt_(opt),
+      rows_(comm, ids),
+      blocks_(comm, rows_.total()),
+      n_total_(rows_.total()) {
   if (ids.size() != species.size()) throw Error("H5MD: ids and species differ in length");
-  const RowOrder mine = sort_by_row(rows_.rows(ids));
+  blocks_.route(rows_.rows(ids));
   int size = 1;
   MPI_Comm_size(comm, &size);
 
@@ -157,12 +116,12 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
         make_series(all.id(), "internal_energy", 1, n_total_, metal ? "eV" : nullptr);
   }
 
-  const auto sorted_ids = in_row_order(ids.data(), mine.order, 1);
-  write_fixed(all.id(), "id", H5T_NATIVE_INT64, H5T_STD_I64LE, sorted_ids.data(), mine.rows,
-              n_total_, dxpl_.id());
-  const auto sorted_species = in_row_order(species.data(), mine.order, 1);
-  write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, sorted_species.data(), mine.rows,
-              n_total_, dxpl_.id());
+  const auto block_ids = blocks_.to_block(ids.data());
+  write_fixed(all.id(), "id", H5T_NATIVE_INT64, H5T_STD_I64LE, block_ids.data(), blocks_.count(),
+              blocks_.begin(), n_total_, dxpl_.id());
+  const auto block_species = blocks_.to_block(species.data());
+  write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, block_species.data(),
+              blocks_.count(), blocks_.begin(), n_total_, dxpl_.id());
 }
 
 H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name, int rank_dims,
@@ -203,7 +162,7 @@ H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& 
 }
 
 void H5mdWriter::append(TimeSeries& ts, int64_t step, double time, const std::vector<double>& data,
-                        const std::vector<uint64_t>& rows, hsize_t n_total, hsize_t width) {
+                        hsize_t n_local, hsize_t offset, hsize_t n_total, hsize_t width) {
   const hsize_t t = static_cast<hsize_t>(frames_);
   const hsize_t new1[1] = {t + 1};
   H5Dset_extent(ts.step.id(), new1);
@@ -229,7 +188,7 @@ void H5mdWriter::append(TimeSeries& ts, int64_t step, double time, const std::ve
     H5Dset_extent(ts.value.id(), dims);
   }
   h5::Handle fspace(H5Dget_space(ts.value.id()), H5Sclose);
-  const h5::Handle mspace = select_rows(fspace.id(), vec3 ? 3 : 2, t, rows, width);
+  const h5::Handle mspace = select_block(fspace.id(), vec3 ? 3 : 2, t, offset, n_local, width);
   H5Dwrite(ts.value.id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), dxpl_.id(), data.data());
 }
 
@@ -252,26 +211,23 @@ void H5mdWriter::write_frame(int64_t step, double time_ps, const std::array<doub
   if (any_wrong != 0) {
     throw Error(fmt::format("H5MD: {} array has the wrong size", wrong ? wrong : "another rank's"));
   }
-  const RowOrder mine = sort_by_row(rows_.rows(ids));
+  blocks_.route(rows_.rows(ids));
   const std::array<double, 9> matrix = {box_edges[0], 0.0, 0.0, 0.0,         box_edges[1],
                                         0.0,          0.0, 0.0, box_edges[2]};
-  const std::vector<uint64_t> box_rows =
-      rank_ == 0 ? std::vector<uint64_t>{0, 1, 2} : std::vector<uint64_t>{};
-  append(edges_, step, time_ps, {matrix.begin(), matrix.begin() + 3 * box_rows.size()}, box_rows, 3,
+  append(edges_, step, time_ps, {matrix.begin(), matrix.end()}, rank_ == 0 ? 3 : 0, 0, 3, 3);
+  const hsize_t n_local = blocks_.count(), offset = blocks_.begin();
+  append(position_, step, time_ps, blocks_.to_block(positions.data(), 3), n_local, offset, n_total_,
          3);
-  append(position_, step, time_ps, in_row_order(positions.data(), mine.order, 3), mine.rows,
-         n_total_, 3);
   if (opt_.velocities) {
-    append(velocity_, step, time_ps, in_row_order(velocities.data(), mine.order, 3), mine.rows,
+    append(velocity_, step, time_ps, blocks_.to_block(velocities.data(), 3), n_local, offset,
            n_total_, 3);
   }
   if (opt_.forces) {
-    append(force_, step, time_ps, in_row_order(forces.data(), mine.order, 3), mine.rows, n_total_,
-           3);
+    append(force_, step, time_ps, blocks_.to_block(forces.data(), 3), n_local, offset, n_total_, 3);
   }
   if (opt_.internal_energy) {
-    append(internal_energy_, step, time_ps, in_row_order(internal_energy.data(), mine.order, 1),
-           mine.rows, n_total_, 1);
+    append(internal_energy_, step, time_ps, blocks_.to_block(internal_energy.data(), 1), n_local,
+           offset, n_total_, 1);
   }
   ++frames_;
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);

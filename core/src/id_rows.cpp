@@ -20,9 +20,11 @@ std::vector<int> displacements(const std::vector<int>& counts) {
   return d;
 }
 
-// Ids sent to the ranks that own them, and the way back for the answers.
+// Keys (ids, rows) sent to the ranks that own them, and the way back for
+// the answers.
+template <class T>
 struct Routed {
-  std::vector<std::int64_t> received;
+  std::vector<T> received;
   std::vector<int> counts, displs, recv_counts, recv_displs;
   std::vector<std::size_t> slot;  // each id's place in the send order; npos: not sent
   [[nodiscard]] std::size_t sent() const {
@@ -30,32 +32,35 @@ struct Routed {
   }
 };
 
-// `owner` says -1 for an id no rank owns; that id is not sent.
-template <class Owner>
-Routed route(MPI_Comm comm, int size, const std::vector<std::int64_t>& ids, Owner owner) {
-  Routed r;
+// `owner` says -1 for a key no rank owns; that key is not sent.
+template <class T, class Owner>
+Routed<T> send_to_owners(MPI_Comm comm, MPI_Datatype type, const std::vector<T>& keys,
+                         Owner owner) {
+  int size = 1;
+  check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+  Routed<T> r;
   r.counts.assign(static_cast<std::size_t>(size), 0);
-  std::vector<int> to(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    to[i] = owner(ids[i]);
+  std::vector<int> to(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    to[i] = owner(keys[i]);
     if (to[i] >= 0) ++r.counts[static_cast<std::size_t>(to[i])];
   }
   r.displs = displacements(r.counts);
   auto at = r.displs;
-  std::vector<std::int64_t> send(r.sent());
-  r.slot.assign(ids.size(), std::string::npos);
-  for (std::size_t i = 0; i < ids.size(); ++i) {
+  std::vector<T> send(r.sent());
+  r.slot.assign(keys.size(), std::string::npos);
+  for (std::size_t i = 0; i < keys.size(); ++i) {
     if (to[i] < 0) continue;
     r.slot[i] = static_cast<std::size_t>(at[static_cast<std::size_t>(to[i])]++);
-    send[r.slot[i]] = ids[i];
+    send[r.slot[i]] = keys[i];
   }
   r.recv_counts.resize(r.counts.size());
   check(MPI_Alltoall(r.counts.data(), 1, MPI_INT, r.recv_counts.data(), 1, MPI_INT, comm),
         "MPI_Alltoall");
   r.recv_displs = displacements(r.recv_counts);
   r.received.resize(static_cast<std::size_t>(r.recv_displs.back() + r.recv_counts.back()));
-  check(MPI_Alltoallv(send.data(), r.counts.data(), r.displs.data(), MPI_INT64_T, r.received.data(),
-                      r.recv_counts.data(), r.recv_displs.data(), MPI_INT64_T, comm),
+  check(MPI_Alltoallv(send.data(), r.counts.data(), r.displs.data(), type, r.received.data(),
+                      r.recv_counts.data(), r.recv_displs.data(), type, comm),
         "MPI_Alltoallv");
   return r;
 }
@@ -83,7 +88,8 @@ IdRows::IdRows(MPI_Comm comm, const std::vector<std::int64_t>& ids) : comm_(comm
 
   // Every id goes to its range's owner once, even for a dense set: that is
   // where a repeated id shows without any rank holding all of them.
-  slice_ = route(comm, size_, ids, [&](std::int64_t id) { return owner(id); }).received;
+  slice_ =
+      send_to_owners(comm, MPI_INT64_T, ids, [&](std::int64_t id) { return owner(id); }).received;
   std::sort(slice_.begin(), slice_.end());
   // Every rank throws, so that none is left waiting in a collective call.
   int repeated = std::adjacent_find(slice_.begin(), slice_.end()) != slice_.end() ? 1 : 0;
@@ -107,7 +113,8 @@ int IdRows::owner(std::int64_t id) const {
 }
 
 std::vector<std::uint64_t> IdRows::ask_owners(const std::vector<std::int64_t>& ids) const {
-  const Routed r = route(comm_, size_, ids, [&](std::int64_t id) { return owner(id); });
+  const auto r =
+      send_to_owners(comm_, MPI_INT64_T, ids, [&](std::int64_t id) { return owner(id); });
   std::vector<std::uint64_t> answers(r.received.size());
   for (std::size_t k = 0; k < answers.size(); ++k) {
     const std::int64_t id = r.received[k];
@@ -149,6 +156,66 @@ std::vector<std::uint64_t> IdRows::rows(const std::vector<std::int64_t>& ids) co
     throw Error(fmt::format("the ranks hold {} particles, the file has {}", all[1], total_));
   }
   return out;
+}
+
+}  // namespace pbms::mpi
+
+namespace pbms::mpi {
+
+RowBlocks::RowBlocks(MPI_Comm comm, std::uint64_t rows) : comm_(comm) {
+  int rank = 0, size = 1;
+  check(MPI_Comm_rank(comm, &rank), "MPI_Comm_rank");
+  check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
+  block_ = std::max<std::uint64_t>(
+      1, (rows + static_cast<std::uint64_t>(size) - 1) / static_cast<std::uint64_t>(size));
+  begin_ = std::min(rows, static_cast<std::uint64_t>(rank) * block_);
+  end_ = std::min(rows, begin_ + block_);
+}
+
+void RowBlocks::route(const std::vector<std::uint64_t>& rows) {
+  auto r = send_to_owners(comm_, MPI_UINT64_T, rows,
+                          [&](std::uint64_t row) { return static_cast<int>(row / block_); });
+  order_.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) order_[r.slot[i]] = i;
+  counts_ = std::move(r.counts);
+  displs_ = std::move(r.displs);
+  recv_counts_ = std::move(r.recv_counts);
+  recv_displs_ = std::move(r.recv_displs);
+  arrived_ = std::move(r.received);
+}
+
+template <class T>
+std::vector<T> RowBlocks::move(const T* values, std::size_t width, MPI_Datatype type) const {
+  std::vector<T> send;
+  send.reserve(order_.size() * width);
+  for (const std::size_t i : order_)
+    send.insert(send.end(), values + i * width, values + (i + 1) * width);
+  const int w = static_cast<int>(width);
+  auto scaled = [w](std::vector<int> v) {
+    for (int& x : v) x *= w;
+    return v;
+  };
+  std::vector<T> received(arrived_.size() * width);
+  check(MPI_Alltoallv(send.data(), scaled(counts_).data(), scaled(displs_).data(), type,
+                      received.data(), scaled(recv_counts_).data(), scaled(recv_displs_).data(),
+                      type, comm_),
+        "MPI_Alltoallv");
+  std::vector<T> block(count() * width);
+  for (std::size_t k = 0; k < arrived_.size(); ++k) {
+    std::copy_n(received.begin() + static_cast<std::ptrdiff_t>(k * width), width,
+                block.begin() + static_cast<std::ptrdiff_t>((arrived_[k] - begin_) * width));
+  }
+  return block;
+}
+
+std::vector<double> RowBlocks::to_block(const double* values, std::size_t width) const {
+  return move(values, width, MPI_DOUBLE);
+}
+std::vector<std::int64_t> RowBlocks::to_block(const std::int64_t* values) const {
+  return move(values, 1, MPI_INT64_T);
+}
+std::vector<int> RowBlocks::to_block(const int* values) const {
+  return move(values, 1, MPI_INT);
 }
 
 }  // namespace pbms::mpi

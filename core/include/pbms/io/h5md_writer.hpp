@@ -4,9 +4,11 @@
 // extended XYZ. All ranks of `comm` call every method; each passes the
 // particles it holds at the time, in any order. A particle's row is its place
 // among all ids in ascending order, the same in every frame wherever the
-// particle has migrated, so the file is the same whatever the decomposition
-// and no rank ever holds every particle: each writes its own rows (a point
-// selection) in one collective MPI-IO write per dataset.
+// particle has migrated, so the file is the same whatever the decomposition.
+// No rank ever holds every particle: the rows are cut into one block per
+// rank, each rank's particles go to the ranks whose blocks hold their rows
+// (one all-to-all exchange per dataset), and every rank writes its block as
+// one hyperslab in a collective MPI-IO write.
 //
 // Layout: particles/all/{position,velocity,force,internal_energy} as time
 // series (step, time, value), particles/all/box/edges as a time series of
@@ -72,15 +74,16 @@ class H5mdWriter {
   // `unit_attribute` of the values.
   TimeSeries make_series(hid_t parent, const std::string& name, int rank_dims, hsize_t n,
                          const char* unit, const char* unit_attribute = "unit");
-  // Appends a frame to `ts`: the values of this rank's `rows` (ascending),
-  // `width` per row in that order. Rank 0 writes step and time.
+  // Appends a frame to `ts`: `data` holds rows [offset, offset + n_local),
+  // `width` values each. Rank 0 writes step and time.
   void append(TimeSeries& ts, int64_t step, double time, const std::vector<double>& data,
-              const std::vector<uint64_t>& rows, hsize_t n_total, hsize_t width);
+              hsize_t n_local, hsize_t offset, hsize_t n_total, hsize_t width);
 
   MPI_Comm comm_;
   int rank_ = 0;
   Options opt_;
   mpi::IdRows rows_;
+  mpi::RowBlocks blocks_;
   h5::Handle file_;
   h5::Handle dxpl_;
   TimeSeries edges_, position_, velocity_, force_, internal_energy_;
