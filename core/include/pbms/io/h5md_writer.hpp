@@ -5,7 +5,7 @@
 // particles it holds at the time, in any order. A particle's row is its place
 // among all ids in ascending order, the same in every frame wherever the
 // particle has migrated, so the file is the same whatever the decomposition.
-// No rank ever holds every particle: the rows are cut into one block per
+// No rank gathers every particle: the rows are cut into one block per
 // rank, each rank's particles go to the ranks whose blocks hold their rows
 // (one all-to-all exchange per dataset), and every rank writes its block as
 // one hyperslab in a collective MPI-IO write.
@@ -17,8 +17,8 @@
 // ASCII strings in MDAnalysis' spelling: Angstrom, ps, Angstrom ps-1, eV.
 // The units module of H5MD asks for fixed-length strings, but h5py reads
 // those as bytes, which MDAnalysis cannot look up. MDAnalysis has no
-// eV-based force unit, so forces are stored in kJ mol-1 Angstrom-1
-// (converted from the eV/angstrom they are given in).
+// eV-based force unit: forces stay in eV/angstrom, their unit under
+// `pbms_unit` rather than `unit`.
 #pragma once
 
 #include <mpi.h>
