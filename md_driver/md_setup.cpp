@@ -86,15 +86,15 @@ TrajectoryRecorder::TrajectoryRecorder(const StageContext& ctx, Lammps& lmp,
   // LAMMPS gathers atoms by id to every rank; rank 0 writes the file alone.
   if (ctx.rank() == 0) {
     const auto n = lmp.natoms();
-    std::vector<int64_t> ids(static_cast<size_t>(n));
-    for (int64_t i = 0; i < n; ++i) ids[static_cast<size_t>(i)] = i + 1;
+    ids_.resize(static_cast<size_t>(n));
+    for (int64_t i = 0; i < n; ++i) ids_[static_cast<size_t>(i)] = i + 1;
     H5mdWriter::Options opt;
     opt.path = (ctx.stage_dir() / file).string();
     opt.creator = "pbms md_driver";
     opt.creator_version = fmt::format("LAMMPS {}", lmp.version());
     opt.periodic = periodic;
     opt.velocities = true;
-    writer_ = std::make_unique<H5mdWriter>(MPI_COMM_SELF, opt, ids,
+    writer_ = std::make_unique<H5mdWriter>(MPI_COMM_SELF, opt, ids_,
                                            std::vector<int>(static_cast<size_t>(n), 0));
   }
 }
@@ -104,7 +104,7 @@ void TrajectoryRecorder::maybe_write(int64_t step, double time_ps) {
   const auto x = lmp_.gather("x");
   const auto v = lmp_.gather("v");
   const std::array<double, 3> edges = {lmp_.thermo("lx"), lmp_.thermo("ly"), lmp_.thermo("lz")};
-  if (writer_) writer_->write_frame(step, time_ps, edges, x, v);
+  if (writer_) writer_->write_frame(step, time_ps, edges, ids_, x, v);
 }
 
 }  // namespace pbms::md

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lammps.hpp"
 #include "pbms/driver/stage_kind.hpp"
@@ -50,6 +51,7 @@ class TrajectoryRecorder {
   Lammps& lmp_;
   int64_t every_;
   std::string relative_;
+  std::vector<int64_t> ids_;  // LAMMPS' 1..N, the order lmp_.gather() returns
   std::unique_ptr<H5mdWriter> writer_;
 };
 

@@ -2,10 +2,36 @@
 
 #include <fmt/format.h>
 
+#include <tuple>
+
 #include "pbms/error.hpp"
 
 namespace pbms {
 namespace {
+
+int rank_of(MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank;
+}
+
+// The dataset's rows [offset, offset + n_local) at `frame` (a leading frame
+// dimension when dims > 1), `width` values per row, and the memory space of
+// as many values.
+h5::Handle select_block(hid_t fspace, int dims, hsize_t frame, hsize_t offset, hsize_t n_local,
+                        hsize_t width) {
+  const hsize_t n = n_local * width;
+  h5::Handle mspace(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  if (n == 0) {
+    H5Sselect_none(fspace);
+    H5Sselect_none(mspace.id());
+    return mspace;
+  }
+  const hsize_t start[3] = {frame, offset, 0}, count[3] = {1, n_local, width};
+  const int skip = dims > 1 ? 0 : 1;
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start + skip, nullptr, count + skip, nullptr);
+  return mspace;
+}
 
 void write_fixed(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                  const void* local, hsize_t n_local, hsize_t offset, hsize_t n_total, hid_t dxpl) {
@@ -13,12 +39,7 @@ void write_fixed(hid_t parent, const std::string& name, hid_t mem_type, hid_t fi
   h5::Handle ds(H5Dcreate2(parent, name.c_str(), file_type, fspace.id(), H5P_DEFAULT, H5P_DEFAULT,
                            H5P_DEFAULT),
                 H5Dclose);
-  h5::Handle mspace(H5Screate_simple(1, &n_local, nullptr), H5Sclose);
-  H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, &offset, nullptr, &n_local, nullptr);
-  if (n_local == 0) {
-    H5Sselect_none(fspace.id());
-    H5Sselect_none(mspace.id());
-  }
+  const h5::Handle mspace = select_block(fspace.id(), 1, 0, offset, n_local, 1);
   H5Dwrite(ds.id(), mem_type, mspace.id(), fspace.id(), dxpl, local);
 }
 
@@ -38,17 +59,16 @@ void write_string_array(hid_t obj, const std::string& name, const std::vector<st
 
 H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids,
                        const std::vector<int>& species)
-    : comm_(comm), opt_(opt) {
+    : comm_(comm),
+      rank_(rank_of(comm)),
+      opt_(opt),
+      rows_(comm, ids),
+      blocks_(comm, rows_.total()),
+      n_total_(rows_.total()) {
   if (ids.size() != species.size()) throw Error("H5MD: ids and species differ in length");
-  n_local_ = ids.size();
-  unsigned long long local = n_local_, before = 0, total = 0;
-  MPI_Exscan(&local, &before, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
-  MPI_Allreduce(&local, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
+  blocks_.route(rows_.rows(ids));
+  int size = 1;
   MPI_Comm_size(comm, &size);
-  offset_ = rank == 0 ? 0 : before;
-  n_total_ = total;
 
   file_ = h5::create_truncate(opt.path, comm);
   dxpl_ = h5::Handle(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
@@ -88,19 +108,20 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
     // know, so the unit goes into `pbms_unit`, not `unit`; MDAnalysis then
     // reads the file with convert_units=False, which leaves its Å and ps
     // (its own base units) as they are.
-    force_ = make_series(all.id(), "force", 2, n_total_, metal ? "eV Angstrom-1" : nullptr,
-                         "pbms_unit");
+    force_ =
+        make_series(all.id(), "force", 2, n_total_, metal ? "eV Angstrom-1" : nullptr, "pbms_unit");
   }
   if (opt.internal_energy) {
     internal_energy_ =
         make_series(all.id(), "internal_energy", 1, n_total_, metal ? "eV" : nullptr);
   }
 
-  std::vector<long long> id_ll(ids.begin(), ids.end());
-  write_fixed(all.id(), "id", H5T_NATIVE_LLONG, H5T_STD_I64LE, id_ll.data(), n_local_, offset_,
-              n_total_, dxpl_.id());
-  write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, species.data(), n_local_, offset_,
-              n_total_, dxpl_.id());
+  const auto block_ids = blocks_.to_block(ids.data());
+  write_fixed(all.id(), "id", H5T_NATIVE_INT64, H5T_STD_I64LE, block_ids.data(), blocks_.count(),
+              blocks_.begin(), n_total_, dxpl_.id());
+  const auto block_species = blocks_.to_block(species.data());
+  write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, block_species.data(),
+              blocks_.count(), blocks_.begin(), n_total_, dxpl_.id());
 }
 
 H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name, int rank_dims,
@@ -140,21 +161,19 @@ H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& 
   return ts;
 }
 
-void H5mdWriter::append(TimeSeries& ts, int64_t step, double time, const double* data,
+void H5mdWriter::append(TimeSeries& ts, int64_t step, double time, const std::vector<double>& data,
                         hsize_t n_local, hsize_t offset, hsize_t n_total, hsize_t width) {
   const hsize_t t = static_cast<hsize_t>(frames_);
   const hsize_t new1[1] = {t + 1};
   H5Dset_extent(ts.step.id(), new1);
   H5Dset_extent(ts.time.id(), new1);
-  int rank = 0;
-  MPI_Comm_rank(comm_, &rank);
   for (auto [ds, type, ptr] : {std::tuple{ts.step.id(), H5T_NATIVE_INT64, (const void*)&step},
                                std::tuple{ts.time.id(), H5T_NATIVE_DOUBLE, (const void*)&time}}) {
     h5::Handle fspace(H5Dget_space(ds), H5Sclose);
     const hsize_t one = 1;
     h5::Handle mspace(H5Screate_simple(1, &one, nullptr), H5Sclose);
     H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, &t, nullptr, &one, nullptr);
-    if (rank != 0) {
+    if (rank_ != 0) {
       H5Sselect_none(fspace.id());
       H5Sselect_none(mspace.id());
     }
@@ -169,50 +188,46 @@ void H5mdWriter::append(TimeSeries& ts, int64_t step, double time, const double*
     H5Dset_extent(ts.value.id(), dims);
   }
   h5::Handle fspace(H5Dget_space(ts.value.id()), H5Sclose);
-  const hsize_t start3[3] = {t, offset, 0}, count3[3] = {1, n_local, 3};
-  const hsize_t start2[2] = {t, offset}, count2[2] = {1, n_local};
-  H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, vec3 ? start3 : start2, nullptr,
-                      vec3 ? count3 : count2, nullptr);
-  const hsize_t mcount = n_local * (vec3 ? 3 : 1);
-  h5::Handle mspace(H5Screate_simple(1, &mcount, nullptr), H5Sclose);
-  if (n_local == 0) {
-    H5Sselect_none(fspace.id());
-    H5Sselect_none(mspace.id());
-  }
-  H5Dwrite(ts.value.id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), dxpl_.id(), data);
+  const h5::Handle mspace = select_block(fspace.id(), vec3 ? 3 : 2, t, offset, n_local, width);
+  H5Dwrite(ts.value.id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), dxpl_.id(), data.data());
 }
 
 void H5mdWriter::write_frame(int64_t step, double time_ps, const std::array<double, 3>& box_edges,
-                             const std::vector<double>& positions,
+                             const std::vector<int64_t>& ids, const std::vector<double>& positions,
                              const std::vector<double>& velocities,
                              const std::vector<double>& forces,
                              const std::vector<double>& internal_energy) {
-  // All sizes are checked before the first append, so that a refused frame
-  // leaves no series one frame longer than the others.
-  if (positions.size() != 3 * n_local_) throw Error("H5MD: position array has the wrong size");
-  if (opt_.velocities && velocities.size() != 3 * n_local_) {
-    throw Error("H5MD: velocity array has the wrong size");
+  // All sizes are checked, on every rank together, before the first append,
+  // so that a refused frame leaves no series one frame longer than the
+  // others and no rank waiting in a collective write.
+  const std::size_t n = ids.size();
+  const char* wrong = positions.size() != 3 * n                             ? "position"
+                      : opt_.velocities && velocities.size() != 3 * n       ? "velocity"
+                      : opt_.forces && forces.size() != 3 * n               ? "force"
+                      : opt_.internal_energy && internal_energy.size() != n ? "internal energy"
+                                                                            : nullptr;
+  int any_wrong = wrong != nullptr ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &any_wrong, 1, MPI_INT, MPI_MAX, comm_);
+  if (any_wrong != 0) {
+    throw Error(fmt::format("H5MD: {} array has the wrong size", wrong ? wrong : "another rank's"));
   }
-  if (opt_.forces && forces.size() != 3 * n_local_) {
-    throw Error("H5MD: force array has the wrong size");
-  }
-  if (opt_.internal_energy && internal_energy.size() != n_local_) {
-    throw Error("H5MD: internal energy array has the wrong size");
-  }
-  int rank = 0;
-  MPI_Comm_rank(comm_, &rank);
+  blocks_.route(rows_.rows(ids));
   const std::array<double, 9> matrix = {box_edges[0], 0.0, 0.0, 0.0,         box_edges[1],
                                         0.0,          0.0, 0.0, box_edges[2]};
-  append(edges_, step, time_ps, matrix.data(), rank == 0 ? 3 : 0, 0, 3, 3);
-  append(position_, step, time_ps, positions.data(), n_local_, offset_, n_total_, 3);
+  append(edges_, step, time_ps, {matrix.begin(), matrix.end()}, rank_ == 0 ? 3 : 0, 0, 3, 3);
+  const hsize_t n_local = blocks_.count(), offset = blocks_.begin();
+  append(position_, step, time_ps, blocks_.to_block(positions.data(), 3), n_local, offset, n_total_,
+         3);
   if (opt_.velocities) {
-    append(velocity_, step, time_ps, velocities.data(), n_local_, offset_, n_total_, 3);
+    append(velocity_, step, time_ps, blocks_.to_block(velocities.data(), 3), n_local, offset,
+           n_total_, 3);
   }
   if (opt_.forces) {
-    append(force_, step, time_ps, forces.data(), n_local_, offset_, n_total_, 3);
+    append(force_, step, time_ps, blocks_.to_block(forces.data(), 3), n_local, offset, n_total_, 3);
   }
   if (opt_.internal_energy) {
-    append(internal_energy_, step, time_ps, internal_energy.data(), n_local_, offset_, n_total_, 1);
+    append(internal_energy_, step, time_ps, blocks_.to_block(internal_energy.data(), 1), n_local,
+           offset, n_total_, 1);
   }
   ++frames_;
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);

@@ -120,7 +120,8 @@ void run_stage(StageContext& ctx, Mode mode) {
     }
   }
 
-  // H5MD trajectory, gathered on rank 0 in id order.
+  // H5MD trajectory: every rank writes the particles it holds, each at the
+  // row of its id, so no rank gathers them.
   std::unique_ptr<H5mdWriter> h5md;
   const OrthogonalBox& box = engine.domain().box();
   const std::array<double, 3> edges{box.length(0), box.length(1), box.length(2)};
@@ -138,9 +139,9 @@ void run_stage(StageContext& ctx, Mode mode) {
     return rows;
   };
   auto write_frame = [&](std::int64_t step) {
-    const auto all = mpi::sorted_rows(ctx.comm(), local_rows(), width, mpi::RowsTo::kRankZero);
-    if (rank != 0) return;
-    const std::size_t n = all.size() / width;
+    const DpdParticles& q = engine.particles();
+    const auto n = static_cast<std::ptrdiff_t>(engine.owned());
+    const std::vector<std::int64_t> ids(q.id.begin(), q.id.begin() + n);
     if (!h5md) {
       H5mdWriter::Options o;
       o.path = (ctx.stage_dir() / "particles.h5md").string();
@@ -149,23 +150,21 @@ void run_stage(StageContext& ctx, Mode mode) {
       o.velocities = true;
       o.forces = write_forces;
       o.internal_energy = write_u;
-      std::vector<std::int64_t> ids(n);
-      std::vector<int> species(n);
-      for (std::size_t r = 0; r < n; ++r) {
-        ids[r] = static_cast<std::int64_t>(all[r * width]);
-        species[r] = static_cast<int>(all[r * width + 1]);
-      }
-      h5md = std::make_unique<H5mdWriter>(MPI_COMM_SELF, o, ids, species);
+      h5md = std::make_unique<H5mdWriter>(ctx.comm(), o, ids,
+                                          std::vector<int>(q.type.begin(), q.type.begin() + n));
     }
-    std::vector<double> x, v, f, u;
-    for (std::size_t r = 0; r < n; ++r) {
-      const double* row = &all[r * width];
-      x.insert(x.end(), row + 2, row + 5);
-      v.insert(v.end(), row + 5, row + 8);
-      if (write_forces) f.insert(f.end(), row + 8, row + 11);
-      if (write_u) u.push_back(row[width - 1]);
-    }
-    h5md->write_frame(step, static_cast<double>(step) * dt, edges, x, v, f, u);
+    auto flat = [n](const std::vector<Vec3>& a) {
+      std::vector<double> out;
+      out.reserve(3 * static_cast<std::size_t>(n));
+      for (auto it = a.begin(); it != a.begin() + n; ++it)
+        out.insert(out.end(), it->begin(), it->end());
+      return out;
+    };
+    const std::vector<double> u =
+        write_u ? std::vector<double>(q.internal_energy.begin(), q.internal_energy.begin() + n)
+                : std::vector<double>{};
+    h5md->write_frame(step, static_cast<double>(step) * dt, edges, ids, flat(q.x), flat(q.v),
+                      write_forces ? flat(q.f) : std::vector<double>{}, u);
   };
 
   ThermoState thermo;
@@ -320,7 +319,8 @@ void run_stage(StageContext& ctx, Mode mode) {
   r.attributes["neighbour_list_builds"] = fmt::format("{}", engine.rebuilds());
   if (grid_step)
     r.attributes["grid_cell_size"] = fmt::format("{:g}", grid_step->grid().cell_size());
-  if (h5md) r.files.push_back((std::filesystem::path(ctx.stage()) / "particles.h5md").string());
+  if (h5md && rank == 0)
+    r.files.push_back((std::filesystem::path(ctx.stage()) / "particles.h5md").string());
 }
 
 }  // namespace

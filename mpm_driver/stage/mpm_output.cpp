@@ -1,9 +1,5 @@
 #include "mpm_output.hpp"
 
-#include <numeric>
-
-#include "pbms/mpi/sorted_rows.hpp"
-
 namespace pbms::mpm {
 
 MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
@@ -11,19 +7,18 @@ MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
     : params_(params), stage_(stage) {
   const auto& g = engine.model().grid;
   for (std::size_t a = 0; a < 3; ++a) edges_[a] = g.upper()[a] - g.origin()[a];
-  // Particles are gathered to rank 0 and written in id order, so the file
-  // does not depend on the decomposition.
-  if (params.particles_every > 0 && engine.rank() == 0) {
+  // Every rank writes the points it holds, each at the row of its id, so
+  // the file does not depend on the decomposition and no rank gathers them.
+  if (params.particles_every > 0) {
     H5mdWriter::Options o;
     o.path = (stage_dir / "particles.h5md").string();
     o.creator_version = "mpm_driver";
     o.periodic = engine.model().periodic;
     o.metal_units = params.metal_units;
     o.velocities = true;
-    std::vector<std::int64_t> ids(static_cast<std::size_t>(engine.total_points()));
-    std::iota(ids.begin(), ids.end(), std::int64_t{0});
+    const auto& ids = engine.points().id;
     particles_ =
-        std::make_unique<H5mdWriter>(MPI_COMM_SELF, o, ids, std::vector<int>(ids.size(), 0));
+        std::make_unique<H5mdWriter>(engine.comm(), o, ids, std::vector<int>(ids.size(), 0));
   }
   if (params.grid_every > 0) {
     grid_ = std::make_unique<GridFieldWriter>(engine.comm(), (stage_dir / "grid").string(), g,
@@ -39,23 +34,14 @@ void MpmOutput::write(const MpmEngine& engine, std::int64_t step, double t) {
 
 void MpmOutput::write_particles(const MpmEngine& engine, std::int64_t step, double t) {
   const MaterialPoints& pts = engine.points();
-  std::vector<double> rows;
-  rows.reserve(pts.size() * 7);
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    rows.push_back(static_cast<double>(pts.id[i]));
-    rows.insert(rows.end(), pts.x[i].begin(), pts.x[i].end());
-    rows.insert(rows.end(), pts.v[i].begin(), pts.v[i].end());
-  }
-  const auto all = mpi::sorted_rows(engine.comm(), rows, 7, mpi::RowsTo::kRankZero);
-  if (!particles_) return;
   std::vector<double> x, v;
-  for (std::size_t r = 0; r + 7 <= all.size(); r += 7) {
-    x.insert(x.end(), all.begin() + static_cast<std::ptrdiff_t>(r + 1),
-             all.begin() + static_cast<std::ptrdiff_t>(r + 4));
-    v.insert(v.end(), all.begin() + static_cast<std::ptrdiff_t>(r + 4),
-             all.begin() + static_cast<std::ptrdiff_t>(r + 7));
+  x.reserve(3 * pts.size());
+  v.reserve(3 * pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    x.insert(x.end(), pts.x[i].begin(), pts.x[i].end());
+    v.insert(v.end(), pts.v[i].begin(), pts.v[i].end());
   }
-  particles_->write_frame(step, t, edges_, x, v);
+  particles_->write_frame(step, t, edges_, pts.id, x, v);
 }
 
 void MpmOutput::write_grid(const MpmEngine& engine, std::int64_t step, double t) {

@@ -33,7 +33,7 @@ class MpmOutput {
   MpmRunParams params_;
   std::string stage_;
   std::array<double, 3> edges_{};
-  std::unique_ptr<H5mdWriter> particles_;  // rank 0
+  std::unique_ptr<H5mdWriter> particles_;
   std::unique_ptr<GridFieldWriter> grid_;
 };
 

@@ -48,8 +48,8 @@ TEST(H5md, WritesReadableTrajectory) {
     opt.path = path;
     opt.velocities = true;
     pbms::H5mdWriter w(MPI_COMM_SELF, opt, {1, 2}, {0, 0});
-    w.write_frame(0, 0.0, {10, 10, 10}, {0, 0, 0, 1, 1, 1}, {0, 0, 0, 0, 0, 0});
-    w.write_frame(10, 0.02, {10, 10, 10.5}, {0.1, 0, 0, 1, 1.1, 1}, {1, 0, 0, 0, 1, 0});
+    w.write_frame(0, 0.0, {10, 10, 10}, {1, 2}, {0, 0, 0, 1, 1, 1}, {0, 0, 0, 0, 0, 0});
+    w.write_frame(10, 0.02, {10, 10, 10.5}, {1, 2}, {0.1, 0, 0, 1, 1.1, 1}, {1, 0, 0, 0, 1, 0});
     EXPECT_EQ(w.frames(), 2);
   }
   pbms::h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);

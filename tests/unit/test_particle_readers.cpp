@@ -105,8 +105,10 @@ void boundary_attribute(hid_t box, const std::array<const char*, 3>& b) {
 TEST(H5mdReader, RoundTripThroughWriter) {
   ScratchDir dir;
   const auto path = dir.file("traj.h5md");
-  // Ids out of order, so that a reader inventing 0..N-1 shows.
+  // Ids out of order, so that a reader inventing 0..N-1 shows. The file
+  // holds them in ascending id: given particles 1, 2, 0.
   const std::vector<int64_t> ids = {7, 3, 5};
+  const std::vector<size_t> given = {1, 2, 0};
   const std::vector<int> species = {0, 1, 0};
   const std::vector<double> x0 = {0.1, 0.2, 0.3, 1.1, 1.2, 1.3, 2.1, 2.2, 2.3};
   const std::vector<double> x1 = {0.4, 0.5, 0.6, 1.4, 1.5, 1.6, 2.4, 2.5, 2.6};
@@ -121,25 +123,26 @@ TEST(H5mdReader, RoundTripThroughWriter) {
     opt.forces = true;
     opt.internal_energy = true;
     pbms::H5mdWriter w(MPI_COMM_SELF, opt, ids, species);
-    w.write_frame(0, 0.0, {10, 11, 12}, x0, v0, f0, e0);
-    w.write_frame(20, 0.04, {10, 11, 12.5}, x1, v1, f1, e1);
+    w.write_frame(0, 0.0, {10, 11, 12}, ids, x0, v0, f0, e0);
+    w.write_frame(20, 0.04, {10, 11, 12.5}, ids, x1, v1, f1, e1);
     // A refused frame leaves every series as it was.
-    EXPECT_THROW(w.write_frame(30, 0.06, {10, 11, 12.5}, x1, v1, {1.0}, e1), pbms::Error);
-    EXPECT_THROW(w.write_frame(30, 0.06, {10, 11, 12.5}, x1, v1, f1, {1.0}), pbms::Error);
+    EXPECT_THROW(w.write_frame(30, 0.06, {10, 11, 12.5}, ids, x1, v1, {1.0}, e1), pbms::Error);
+    EXPECT_THROW(w.write_frame(30, 0.06, {10, 11, 12.5}, ids, x1, v1, f1, {1.0}), pbms::Error);
+    EXPECT_THROW(w.write_frame(30, 0.06, {10, 11, 12.5}, {7, 3, 4}, x1, v1, f1, e1), pbms::Error);
     EXPECT_EQ(w.frames(), 2);
   }
 
   const auto last = pbms::read_h5md_particles(path);
   EXPECT_EQ(last.step, 20);
   EXPECT_DOUBLE_EQ(last.time, 0.04);
-  EXPECT_EQ(last.id, ids);
-  EXPECT_EQ(last.species, species);
+  EXPECT_EQ(last.id, (std::vector<int64_t>{3, 5, 7}));
+  EXPECT_EQ(last.species, (std::vector<int>{1, 0, 0}));
   ASSERT_EQ(last.x.size(), 3u);
   ASSERT_TRUE(last.has_velocities);
   for (size_t i = 0; i < 3; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_DOUBLE_EQ(last.x[i][c], x1[3 * i + c]);
-      EXPECT_DOUBLE_EQ(last.v[i][c], v1[3 * i + c]);
+    for (size_t c = 0; c < 3; ++c) {
+      EXPECT_DOUBLE_EQ(last.x[i][c], x1[3 * given[i] + c]);
+      EXPECT_DOUBLE_EQ(last.v[i][c], v1[3 * given[i] + c]);
     }
   }
   EXPECT_EQ(last.box_lo, (std::array<double, 3>{0, 0, 0}));
@@ -150,7 +153,7 @@ TEST(H5mdReader, RoundTripThroughWriter) {
 
   const auto first = pbms::read_h5md_particles(path, "all", 0);
   EXPECT_EQ(first.step, 0);
-  EXPECT_DOUBLE_EQ(first.x[2][1], 2.2);
+  EXPECT_DOUBLE_EQ(first.x[1][1], 2.2);
   EXPECT_EQ(first.box_hi[2], 12.0);
   EXPECT_EQ(pbms::read_h5md_particles(path, "", -2).step, 0);
   const auto range = error_of([&] { pbms::read_h5md_particles(path, "", 2); });
@@ -181,12 +184,11 @@ TEST(H5mdReader, RoundTripThroughWriter) {
   };
   // Forces stay in eV/angstrom; their unit is under `pbms_unit`, which
   // MDAnalysis does not read (it refuses force units it does not know).
-  const auto force =
-      read_all("particles/all/force/value", {2, 3, 3}, "eV Angstrom-1", "pbms_unit");
+  const auto force = read_all("particles/all/force/value", {2, 3, 3}, "eV Angstrom-1", "pbms_unit");
   EXPECT_EQ(H5Aexists_by_name(f.id(), "particles/all/force/value", "unit", H5P_DEFAULT), 0);
   for (size_t i = 0; i < 9; ++i) {
-    EXPECT_EQ(force[i], f0[i]);
-    EXPECT_EQ(force[9 + i], f1[i]);
+    EXPECT_EQ(force[i], f0[3 * given[i / 3] + i % 3]);
+    EXPECT_EQ(force[9 + i], f1[3 * given[i / 3] + i % 3]);
   }
   read_all("particles/all/position/value", {2, 3, 3}, "Angstrom");
   read_all("particles/all/velocity/value", {2, 3, 3}, "Angstrom ps-1");
@@ -197,7 +199,7 @@ TEST(H5mdReader, RoundTripThroughWriter) {
   EXPECT_EQ(edges, (std::vector<double>{10, 0, 0, 0, 11, 0, 0, 0, 12,  //
                                         10, 0, 0, 0, 11, 0, 0, 0, 12.5}));
   const auto energy = read_all("particles/all/internal_energy/value", {2, 3}, "eV");
-  EXPECT_EQ(energy, (std::vector<double>{0.5, 0.6, 0.7, 1.5, 1.6, 1.7}));
+  EXPECT_EQ(energy, (std::vector<double>{0.6, 0.7, 0.5, 1.6, 1.7, 1.5}));
   EXPECT_GT(H5Lexists(f.id(), "particles/all/internal_energy/step", H5P_DEFAULT), 0);
 }
 
@@ -213,7 +215,7 @@ TEST(H5mdWriter, ConsistentUnitsCarryNoUnitAttributes) {
     opt.velocities = true;
     opt.forces = true;
     pbms::H5mdWriter w(MPI_COMM_SELF, opt, {0}, {0});
-    w.write_frame(0, 0.5, {1, 1, 1}, x, v, f);
+    w.write_frame(0, 0.5, {1, 1, 1}, {0}, x, v, f);
   }
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   for (const char* name : {"particles/all/position/value", "particles/all/position/time",

@@ -1,10 +1,14 @@
 // Particle trajectories in H5MD 1.1, written so that MDAnalysis' H5MD reader
 // opens them with its defaults (tests/integration/readers_mdanalysis.py
 // checks every frame); OVITO does not read H5MD, `./pbms export` turns them into
-// extended XYZ. All ranks of `comm` call every method; each passes its own
-// particles, and the rows are laid out by rank order (offsets from an
-// exclusive scan), so the file is the same whatever the decomposition as
-// long as each rank's slice is in global-id order.
+// extended XYZ. All ranks of `comm` call every method; each passes the
+// particles it holds at the time, in any order. A particle's row is its place
+// among all ids in ascending order, the same in every frame wherever the
+// particle has migrated, so the file is the same whatever the decomposition.
+// No rank gathers every particle: the rows are cut into one block per
+// rank, each rank's particles go to the ranks whose blocks hold their rows
+// (one all-to-all exchange per dataset), and every rank writes its block as
+// one hyperslab in a collective MPI-IO write.
 //
 // Layout: particles/all/{position,velocity,force,internal_energy} as time
 // series (step, time, value), particles/all/box/edges as a time series of
@@ -13,8 +17,8 @@
 // ASCII strings in MDAnalysis' spelling: Angstrom, ps, Angstrom ps-1, eV.
 // The units module of H5MD asks for fixed-length strings, but h5py reads
 // those as bytes, which MDAnalysis cannot look up. MDAnalysis has no
-// eV-based force unit, so forces are stored in kJ mol-1 Angstrom-1
-// (converted from the eV/angstrom they are given in).
+// eV-based force unit: forces stay in eV/angstrom, their unit under
+// `pbms_unit` rather than `unit`.
 #pragma once
 
 #include <mpi.h>
@@ -25,6 +29,7 @@
 #include <vector>
 
 #include "pbms/io/hdf5.hpp"
+#include "pbms/mpi/id_rows.hpp"
 
 namespace pbms {
 
@@ -43,16 +48,20 @@ class H5mdWriter {
     bool forces = false;           // particles/all/force, given in eV/angstrom
     bool internal_energy = false;  // particles/all/internal_energy, eV
   };
-  // `ids` and `species` are this rank's particles; the count is fixed.
+  // `ids` and `species` are this rank's particles, any order; together the
+  // ranks' ids are the file's particles, each id on one rank.
   H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids,
              const std::vector<int>& species);
 
-  // `positions` (and `velocities`, `forces` when enabled) hold 3 values per
-  // local particle, `internal_energy` one, in the same order as the ids
-  // given to the constructor. Arrays of disabled series are ignored. The
-  // box is rectangular: `box_edges` are its three edge lengths.
+  // `ids` are the particles this rank holds now (any count, any order, all
+  // ranks together holding every particle once); `positions` (and
+  // `velocities`, `forces` when enabled) hold 3 values per id,
+  // `internal_energy` one, in the order of `ids`. Arrays of disabled series
+  // are ignored. The box is rectangular: `box_edges` are its three edge
+  // lengths.
   void write_frame(int64_t step, double time_ps, const std::array<double, 3>& box_edges,
-                   const std::vector<double>& positions, const std::vector<double>& velocities = {},
+                   const std::vector<int64_t>& ids, const std::vector<double>& positions,
+                   const std::vector<double>& velocities = {},
                    const std::vector<double>& forces = {},
                    const std::vector<double>& internal_energy = {});
   [[nodiscard]] int64_t frames() const { return frames_; }
@@ -65,15 +74,20 @@ class H5mdWriter {
   // `unit_attribute` of the values.
   TimeSeries make_series(hid_t parent, const std::string& name, int rank_dims, hsize_t n,
                          const char* unit, const char* unit_attribute = "unit");
-  void append(TimeSeries& ts, int64_t step, double time, const double* data, hsize_t n_local,
-              hsize_t offset, hsize_t n_total, hsize_t width);
+  // Appends a frame to `ts`: `data` holds rows [offset, offset + n_local),
+  // `width` values each. Rank 0 writes step and time.
+  void append(TimeSeries& ts, int64_t step, double time, const std::vector<double>& data,
+              hsize_t n_local, hsize_t offset, hsize_t n_total, hsize_t width);
 
   MPI_Comm comm_;
+  int rank_ = 0;
   Options opt_;
+  mpi::IdRows rows_;
+  mpi::RowBlocks blocks_;
   h5::Handle file_;
   h5::Handle dxpl_;
   TimeSeries edges_, position_, velocity_, force_, internal_energy_;
-  hsize_t n_local_ = 0, offset_ = 0, n_total_ = 0;
+  hsize_t n_total_ = 0;
   int64_t frames_ = 0;
 };
 
