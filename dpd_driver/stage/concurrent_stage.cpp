@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
@@ -21,6 +23,7 @@
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/error.hpp"
+#include "pbms/io/h5md_writer.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::dpd {
@@ -201,6 +204,39 @@ std::vector<std::uint32_t> motion_masks(const DpdModel& m) {
   return out;
 }
 
+// The DPD part's particles, one H5MD frame, each rank writing its own.
+class DpdPartTrajectory {
+ public:
+  DpdPartTrajectory(const DpdEngine& e, const std::filesystem::path& path) {
+    H5mdWriter::Options o;
+    o.path = path.string();
+    o.creator_version = "dpd_driver (concurrent)";
+    o.periodic = e.domain().box().periodic;
+    o.velocities = true;
+    const DpdParticles& p = e.particles();
+    const std::vector<std::int64_t> ids(p.id.begin(), p.id.begin() + static_cast<long>(e.owned()));
+    const std::vector<int> types(p.type.begin(), p.type.begin() + static_cast<long>(e.owned()));
+    writer_ = std::make_unique<H5mdWriter>(e.comm(), o, ids, types);
+    const OrthogonalBox& box = e.domain().box();
+    for (int a = 0; a < 3; ++a) edges_[static_cast<std::size_t>(a)] = box.length(a);
+  }
+  void write(const DpdEngine& e, std::int64_t step, double t) {
+    const DpdParticles& p = e.particles();
+    std::vector<std::int64_t> ids;
+    std::vector<double> x, v;
+    for (std::size_t i = 0; i < e.owned(); ++i) {
+      ids.push_back(p.id[i]);
+      x.insert(x.end(), p.x[i].begin(), p.x[i].end());
+      v.insert(v.end(), p.v[i].begin(), p.v[i].end());
+    }
+    writer_->write_frame(step, t, edges_, ids, x, v);
+  }
+
+ private:
+  std::unique_ptr<H5mdWriter> writer_;
+  std::array<double, 3> edges_{};
+};
+
 }  // namespace
 
 void ConcurrentStage::run(StageContext& ctx) {
@@ -281,6 +317,12 @@ void ConcurrentStage::run(StageContext& ctx) {
     }
   };
 
+  std::unique_ptr<DpdPartTrajectory> trajectory;
+  if (cp.particles_every > 0) {
+    trajectory =
+        std::make_unique<DpdPartTrajectory>(engine, ctx.stage_dir() / "dpd_particles.h5md");
+    trajectory->write(engine, 0, 0.0);
+  }
   probes.track(0, view.view(engine));
   sample(0);
   const auto started = std::chrono::steady_clock::now();
@@ -289,12 +331,17 @@ void ConcurrentStage::run(StageContext& ctx) {
     scheme.step();
     probes.track(n, view.view(engine));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
+    if (trajectory && (n % cp.particles_every == 0 || n == cp.steps)) {
+      trajectory->write(engine, n, static_cast<double>(n) * cp.time_step);
+    }
     ctx.progress(n, cp.steps, static_cast<double>(n) * cp.time_step, "concurrent");
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   auto& r = ctx.results();
+  if (trajectory)
+    r.files.push_back((std::filesystem::path(ctx.stage()) / "dpd_particles.h5md").string());
   r.attributes["interface"] = p["interface"].as<std::string>();
   r.add_scalar("dpd_particles", dpd_count, "1");
   r.add_scalar("mpm_points", mpm_count, "1");

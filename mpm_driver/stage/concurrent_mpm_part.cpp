@@ -18,6 +18,7 @@
 #include "pbms/error.hpp"
 #include "pbms/grid/for_each_node.hpp"
 #include "pbms/io/grid_field_writer.hpp"
+#include "pbms/io/h5md_writer.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
@@ -79,6 +80,21 @@ void write_grid(GridFieldWriter& out, const MpmEngine& engine, std::int64_t step
   });
   out.write_frame(step, t,
                   {{"mass", "g/mol", 1, mass.data()}, {"velocity", "Å/ps", 3, vel.data()}});
+}
+
+// The MPM part's points, one H5MD frame, each rank writing its own.
+void write_points(H5mdWriter& out, const MpmEngine& engine, std::int64_t step, double t) {
+  const MaterialPoints& p = engine.points();
+  std::vector<double> x, v;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    x.insert(x.end(), p.x[i].begin(), p.x[i].end());
+    v.insert(v.end(), p.v[i].begin(), p.v[i].end());
+  }
+  const auto& g = engine.model().grid;
+  out.write_frame(
+      step, t,
+      {g.upper()[0] - g.origin()[0], g.upper()[1] - g.origin()[1], g.upper()[2] - g.origin()[2]},
+      p.id, x, v);
 }
 
 coupling::ParticleView view_of(const MaterialPoints& p) {
@@ -166,7 +182,16 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     stored.push_back(e);
   };
   std::unique_ptr<GridFieldWriter> grid_out;
+  std::unique_ptr<H5mdWriter> points_out;
   if (cp.particles_every > 0) {
+    H5mdWriter::Options o;
+    o.path = (ctx.stage_dir() / "mpm_particles.h5md").string();
+    o.creator_version = "mpm_driver (concurrent)";
+    o.periodic = cp.periodic;
+    o.velocities = true;
+    points_out = std::make_unique<H5mdWriter>(ctx.comm(), o, engine.points().id,
+                                              std::vector<int>(engine.points().size(), 1));
+    write_points(*points_out, engine, 0, 0.0);
     grid_out = std::make_unique<GridFieldWriter>(
         ctx.comm(), (ctx.stage_dir() / "mpm_grid").string(), cp.grid, engine.owned_nodes());
   }
@@ -179,10 +204,12 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
     if (grid_out && (n % cp.particles_every == 0 || n == cp.steps)) {
       write_grid(*grid_out, engine, n, static_cast<double>(n) * cp.time_step);
+      write_points(*points_out, engine, n, static_cast<double>(n) * cp.time_step);
     }
   }
   auto& r = ctx.results();
   if (grid_out) {
+    r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_particles.h5md").string());
     r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.h5").string());
     r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.xdmf").string());
   }
