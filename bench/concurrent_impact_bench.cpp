@@ -35,7 +35,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // One part per program; returns this rank's stepping time and its waits.
 std::pair<double, double> split(MPI_Comm local, MPI_Comm inter, int program) {
-  const double reach = dpd::cu_cg_morse_parameters().cutoff;
+  const double reach = dpd::cu_cg_morse_parameters().cutoff + kSkin;
   const grid::GridPartition theirs(kBar.grid(), kPeriodic, 1);
   DpdPart d;
   MpmPart m;

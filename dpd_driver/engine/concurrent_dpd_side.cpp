@@ -47,7 +47,7 @@ coupling::PeriodicLengths ConcurrentDpdSide::partner_images() const {
   return out;
 }
 
-void ConcurrentDpdSide::take_partners(const std::vector<coupling::GhostPoint>& partners) {
+void ConcurrentDpdSide::unpack(const std::vector<coupling::GhostPoint>& partners) {
   x_.resize(partners.size());
   v_.resize(partners.size());
   id_.resize(partners.size());
@@ -56,7 +56,16 @@ void ConcurrentDpdSide::take_partners(const std::vector<coupling::GhostPoint>& p
     v_[k] = partners[k].v;
     id_[k] = partners[k].id;
   }
+}
+
+void ConcurrentDpdSide::take_partners(const std::vector<coupling::GhostPoint>& partners) {
+  unpack(partners);
   engine_.set_partners(x_, v_, id_, partner_type_);
+}
+
+void ConcurrentDpdSide::move_partners(const std::vector<coupling::GhostPoint>& partners) {
+  unpack(partners);
+  engine_.move_partners(x_, v_);
 }
 
 std::vector<coupling::Vec3> ConcurrentDpdSide::partner_forces() const {

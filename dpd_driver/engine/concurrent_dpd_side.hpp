@@ -20,13 +20,18 @@ class ConcurrentDpdSide : public coupling::ParticleSide {
   [[nodiscard]] coupling::NodalRecords nodal_records() override;
   void update_and_map_back() override { grid_.update_and_map_back(); }
   void finish_step() override { grid_.finish_step(); }
+  [[nodiscard]] MPI_Comm comm() const override { return engine_.comm(); }
+  [[nodiscard]] bool wants_new_partners() override { return grid_.list_needs_rebuild(); }
 
   [[nodiscard]] coupling::SpaceBox partner_box() const override;
   [[nodiscard]] coupling::PeriodicLengths partner_images() const override;
   void take_partners(const std::vector<coupling::GhostPoint>& partners) override;
+  void move_partners(const std::vector<coupling::GhostPoint>& partners) override;
   [[nodiscard]] std::vector<coupling::Vec3> partner_forces() const override;
 
  private:
+  void unpack(const std::vector<coupling::GhostPoint>& partners);
+
   DpdEngine& engine_;
   DpdGridStep& grid_;
   int partner_type_;

@@ -93,6 +93,27 @@ void DpdEngine::set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>
   partners_.truncate(0);
   for (std::size_t k = 0; k < x.size(); ++k) partners_.add(id[k], type, x[k], v[k]);
   with_partners_ = true;
+  partners_changed_ = true;
+}
+
+void DpdEngine::move_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v) {
+  for (std::size_t k = 0; k < partners_.size(); ++k) {
+    partners_.x[k] = x[k];
+    partners_.v[k] = v[k];
+    const std::size_t i = partner_begin_ + k;
+    for (std::size_t a = 0; a < 3; ++a) particles_.x[i][a] = x[k][a] + partner_offset_[k][a];
+    particles_.v[i] = v[k];
+  }
+}
+
+bool DpdEngine::list_is_stale() {
+  double moved = list_.max_displacement_squared(particles_);
+  if (domain_.size() > 1) {
+    mpi::check(MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_DOUBLE, MPI_MAX, comm()),
+               "MPI_Allreduce (neighbour list check)");
+  }
+  const double half_skin = 0.5 * list_.skin();
+  return moved > half_skin * half_skin;
 }
 
 std::vector<Vec3> DpdEngine::partner_forces() const {
@@ -111,6 +132,14 @@ void DpdEngine::rebuild() {
     particles_.add(partners_.id[k], partners_.type[k], partners_.x[k], partners_.v[k]);
   }
   list_.build(particles_, domain_.list_box(), owned_);
+  // The build wrapped the partners into the box; moved partners keep it.
+  partner_offset_.resize(partners_.size());
+  for (std::size_t k = 0; k < partners_.size(); ++k) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      partner_offset_[k][a] = particles_.x[partner_begin_ + k][a] - partners_.x[k][a];
+    }
+  }
+  partners_changed_ = false;
   if (sweep_order_) {
     sweep_order_->build(particles_, domain_.list_box(),
                         [this](const Vec3& centre) { return domain_.owns(centre); });
@@ -135,7 +164,7 @@ void DpdEngine::update_neighbours() {
                "MPI_Allreduce (neighbour list check)");
   }
   const double half_skin = 0.5 * list_.skin();
-  if (moved > half_skin * half_skin || with_partners_) {
+  if (moved > half_skin * half_skin || partners_changed_) {
     rebuild();
   } else {
     ghosts_.forward(particles_);

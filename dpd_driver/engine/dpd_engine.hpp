@@ -79,6 +79,14 @@ class DpdEngine {
   // the partners' own neighbours).
   void set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v,
                     const std::vector<std::int64_t>& id, int type);
+  // The same partners as the last set_partners, in the same order, moved:
+  // no new list while every partner has moved less than half the skin
+  // since the set (the caller's check). Positions are continuous: a partner
+  // crossing a periodic face arrives unwrapped.
+  void move_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v);
+  // Whether the list must be rebuilt before the next forces: some owned
+  // particle moved more than half the skin since the build. Collective.
+  [[nodiscard]] bool list_is_stale();
   // The force each partner took from this rank's particles at the last
   // compute_forces, in the order given: minus the reaction on it.
   [[nodiscard]] std::vector<Vec3> partner_forces() const;
@@ -149,6 +157,8 @@ class DpdEngine {
   DpdParticles partners_;                           // the partners of this step (x, v, id, type)
   std::size_t partner_begin_ = 0;                   // their index in particles_
   bool with_partners_ = false;
+  bool partners_changed_ = false;
+  std::vector<Vec3> partner_offset_;  // the list build's wrap of each partner
 };
 
 }  // namespace pbms::dpd

@@ -228,6 +228,10 @@ void DpdGridStep::refresh_neighbours() {
   }
 }
 
+bool DpdGridStep::list_needs_rebuild() {
+  return left_own_cells() || engine_.list_is_stale();
+}
+
 bool DpdGridStep::left_own_cells() const {
   const DomainDecomposition& domain = engine_.domain();
   if (domain.size() == 1) return false;

@@ -88,6 +88,11 @@ class DpdGridStep {
   void finish_step();          // move with the grid velocity (s-11), step counted, ghosts
                                // follow
 
+  // Whether the next compute_forces will rebuild the neighbour list (a
+  // particle moved more than half the skin, or left its rank's cells).
+  // Collective over the engine's ranks.
+  [[nodiscard]] bool list_needs_rebuild();
+
   // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
   // update_and_map_back, and the remapped momentum after the latter.
   [[nodiscard]] mpm::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }

@@ -97,12 +97,13 @@ grid::NodeBox interface_band(const SplitBody& body, const ConcurrentParams& cp, 
 }
 
 std::string header_yaml(const std::vector<std::string>& group_names, const grid::NodeBox& band,
-                        double reach) {
+                        double reach, double skin) {
   YAML::Node h;
   h["groups"] = group_names;
   h["band_lo"] = std::vector<int>(band.lo.begin(), band.lo.end());
   h["band_hi"] = std::vector<int>(band.hi.begin(), band.hi.end());
   h["reach"] = reach;
+  h["skin"] = skin;
   YAML::Emitter out;
   out << YAML::Flow << h;
   return out.c_str();
@@ -256,10 +257,14 @@ void ConcurrentStage::run(StageContext& ctx) {
   std::optional<TensionSeries> tension;
   if (cp.tension) tension.emplace(*cp.tension, model, model.particles, plane);
   SplitBody body = split_body(model.particles, cp);
-  const double reach = std::max(model.pair->cutoff(), model.settings.friction.cutoff);
+  // Partners within the list's reach, chosen afresh when either side has
+  // moved half the skin.
+  const double reach =
+      std::max(model.pair->cutoff(), model.settings.friction.cutoff) + model.settings.skin;
   const grid::NodeBox band = interface_band(body, cp, reach);
-  coupling::hand_over(inter, ctx.comm(),
-                      {header_yaml(model.group_names, band, reach), body.mpm_rows});
+  coupling::hand_over(
+      inter, ctx.comm(),
+      {header_yaml(model.group_names, band, reach, model.settings.skin), body.mpm_rows});
   const auto dpd_count = static_cast<double>(body.dpd.size());
   const auto mpm_count = static_cast<double>(body.mpm_rows.size() / kRowWidth);
 

@@ -1,10 +1,55 @@
 #include "engine/concurrent_mpm_side.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace pbms::mpm {
 
-ConcurrentMpmSide::ConcurrentMpmSide(MpmEngine& engine, double dt) : engine_(engine), dt_(dt) {}
+ConcurrentMpmSide::ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin)
+    : engine_(engine), dt_(dt), skin_(partner_skin) {}
+
+bool ConcurrentMpmSide::follow_points() {
+  const MaterialPoints& p = engine_.points();
+  if (p.id != ids_) {
+    ids_ = p.id;
+    last_x_ = unwrapped_ = p.x;
+    return false;
+  }
+  const grid::GridPartition& part = engine_.partition();
+  const grid::RegularGrid& g = part.grid();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      double d = p.x[i][a] - last_x_[i][a];
+      if (part.periodic()[a]) {
+        const double period = g.upper()[a] - g.origin()[a];
+        d -= period * std::round(d / period);
+      }
+      unwrapped_[i][a] += d;
+    }
+    last_x_[i] = p.x[i];
+  }
+  return true;
+}
+
+bool ConcurrentMpmSide::wants_new_partners() {
+  int renew = follow_points() && !changed_ ? 0 : 1;
+  const double half_skin_squared = 0.25 * skin_ * skin_;
+  for (std::size_t i = 0; i < unwrapped_.size() && renew == 0; ++i) {
+    double d2 = 0.0;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double d = unwrapped_[i][a] - chosen_at_[i][a];
+      d2 += d * d;
+    }
+    renew = d2 > half_skin_squared || skin_ <= 0.0 ? 1 : 0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &renew, 1, MPI_INT, MPI_MAX, engine_.comm());
+  return renew != 0;
+}
+
+void ConcurrentMpmSide::partners_renewed() {
+  chosen_at_ = unwrapped_;
+  changed_ = false;
+}
 
 void ConcurrentMpmSide::map_to_grid() {
   engine_.begin_step();
@@ -30,11 +75,12 @@ void ConcurrentMpmSide::finish_step() {
   engine_.boundary_conditions().point_forces = {};
   reactions_.clear();
   engine_.migrate();
+  if (engine_.points().id != ids_) changed_ = true;
 }
 
 coupling::ContinuumSide::Points ConcurrentMpmSide::partner_points() const {
   const MaterialPoints& p = engine_.points();
-  return {p.id, p.x, p.v, p.mass};
+  return {p.id, unwrapped_, p.v, p.mass};
 }
 
 // The space of this rank's cells, which hold its points after every

@@ -11,8 +11,10 @@ namespace pbms::mpm {
 
 class ConcurrentMpmSide : public coupling::ContinuumSide {
  public:
-  // The engine must outlive the side.
-  ConcurrentMpmSide(MpmEngine& engine, double dt);
+  // The engine must outlive the side. The partners are chosen afresh once
+  // a point has moved more than half `partner_skin` (the DPD list's skin)
+  // since they were, or points changed rank; 0 chooses them every step.
+  ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin = 0.0);
 
   void compute_forces() override {}
   void map_to_grid() override;
@@ -20,14 +22,26 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   void update_and_map_back() override;
   void finish_step() override;
 
+  [[nodiscard]] MPI_Comm comm() const override { return engine_.comm(); }
+  [[nodiscard]] bool wants_new_partners() override;
   [[nodiscard]] Points partner_points() const override;
+  void partners_renewed() override;
   [[nodiscard]] coupling::SpaceBox points_box() const override;
   void take_reactions(std::vector<coupling::Vec3> force) override;
 
  private:
+  // Follows the points since the last call: positions unwrapped across
+  // periodic faces. Returns false when the points changed (a migration).
+  bool follow_points();
+
   MpmEngine& engine_;
   double dt_;
+  double skin_;
   std::vector<Vec3> reactions_;
+  std::vector<std::int64_t> ids_;         // the points as last followed
+  std::vector<Vec3> last_x_, unwrapped_;  // wrapped as stored; continuous
+  std::vector<Vec3> chosen_at_;           // unwrapped_ when partners were chosen
+  bool changed_ = true;                   // points changed rank since then
 };
 
 }  // namespace pbms::mpm

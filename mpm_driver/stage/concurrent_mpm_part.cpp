@@ -138,7 +138,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   materials.density.push_back(material["mass"].as<double>() / volume);
   MpmEngine engine(ctx.comm(), model_of(cp, body, groups, p["motion"], volume),
                    std::move(materials));
-  ConcurrentMpmSide side(engine, cp.time_step);
+  ConcurrentMpmSide side(engine, cp.time_step, header["skin"].as<double>());
   int remote = 0;
   MPI_Comm_remote_size(inter, &remote);
   const grid::GridPartition theirs(cp.grid, cp.periodic, remote);

@@ -26,6 +26,7 @@ namespace pbms::testing {
 constexpr double kMass = 508.368;   // 8 Cu atoms, g/mol
 constexpr double kLattice = 7.230;  // a_cg, Å
 constexpr double kDt = 0.01;        // ps
+constexpr double kSkin = 1.0;       // Å, the DPD list's (DpdIntegratorSettings' default)
 // E<100> and ν of the Morse mesoparticle at 298 K (dpd_elastic), GPa → bar.
 constexpr double kYoung = 91.0e4, kPoisson = 0.35;
 const std::array<bool, 3> kPeriodic{false, true, true};
@@ -84,6 +85,7 @@ inline DpdPart dpd_part(MPI_Comm comm, const ConcurrentBar& bar) {
   s.friction.cutoff = dpd::cu_cg_morse_parameters().cutoff;
   s.friction.temperature = 298.0;
   s.friction.seed = 42;
+  s.skin = kSkin;
   DpdPart p;
   p.engine = std::make_unique<dpd::DpdEngine>(comm, c.box, dpd::cu_cg_morse(), s, std::move(mine));
   p.grid = std::make_unique<dpd::DpdGridStep>(*p.engine, dpd::DpdGridSettings{bar.h(), 1.0, 4, {}},
@@ -120,7 +122,7 @@ inline MpmPart mpm_part(MPI_Comm comm, const ConcurrentBar& bar) {
   materials.density.push_back(kMass / volume);
   MpmPart p;
   p.engine = std::make_unique<mpm::MpmEngine>(comm, std::move(model), std::move(materials));
-  p.side = std::make_unique<mpm::ConcurrentMpmSide>(*p.engine, kDt);
+  p.side = std::make_unique<mpm::ConcurrentMpmSide>(*p.engine, kDt, kSkin);
   return p;
 }
 

@@ -66,7 +66,7 @@ void split_equals_monolithic(int dpd_ranks, InterfaceTreatment t) {
   constexpr int kSteps = 200;
   const TwoPrograms job(dpd_ranks);
   const grid::RegularGrid g = kBar.grid();
-  const double reach = dpd::cu_cg_morse_parameters().cutoff;
+  const double reach = dpd::cu_cg_morse_parameters().cutoff + kSkin;
   State split;
   if (job.program == 0) {
     DpdPart d = dpd_part(job.local, kBar);
@@ -152,7 +152,7 @@ dpd::Vec3 momentum_of_job(const TwoPrograms& job, const DpdPart* d, const MpmPar
 double momentum_drift(InterfaceTreatment t, int steps) {
   const TwoPrograms job(1);
   const grid::RegularGrid g = kBar.grid();
-  const double reach = dpd::cu_cg_morse_parameters().cutoff;
+  const double reach = dpd::cu_cg_morse_parameters().cutoff + kSkin;
   std::unique_ptr<DpdPart> d;
   std::unique_ptr<MpmPart> m;
   std::unique_ptr<coupling::CrossProgramLink> link;

@@ -1,5 +1,9 @@
 #include "pbms/coupling/cross_program_link.hpp"
 
+#include <algorithm>
+
+#include "pbms/coupling/scalar_across_programs.hpp"
+
 namespace pbms::coupling {
 
 CrossProgramLink::CrossProgramLink(MPI_Comm inter, ParticleSide& side,
@@ -11,7 +15,8 @@ CrossProgramLink::CrossProgramLink(MPI_Comm inter, ParticleSide& side,
       sum_(inter, mine, theirs, band),
       ghosts_(std::make_unique<PointGhostsAcrossPrograms>(
           inter, PointGhostsAcrossPrograms::Side::kReceiver, side.partner_box(), reach,
-          side.partner_images())) {}
+          side.partner_images())),
+      inter_(inter) {}
 
 CrossProgramLink::CrossProgramLink(MPI_Comm inter, ContinuumSide& side,
                                    const grid::GridPartition& mine,
@@ -22,18 +27,32 @@ CrossProgramLink::CrossProgramLink(MPI_Comm inter, ContinuumSide& side,
       sum_(inter, mine, theirs, band),
       ghosts_(std::make_unique<PointGhostsAcrossPrograms>(
           inter, PointGhostsAcrossPrograms::Side::kSender, side.points_box(), reach,
-          PeriodicLengths{})) {}
+          PeriodicLengths{})),
+      inter_(inter) {}
 
-// The particles moved since the last step, so the receivers' boxes are
-// swapped again first (one small collective over the intercommunicator).
+// Both programs agree whether to choose the partners afresh (one number
+// each way between the roots); then the receivers' boxes are swapped again
+// and the points within reach sent, or the same points resent moved.
 void CrossProgramLink::share_partners() {
+  const double mine = side_.wants_new_partners() ? 1.0 : 0.0;
+  const bool renew = !chosen_ || std::max(mine, swap_scalar(inter_, side_.comm(), mine)) > 0.0;
+  chosen_ = true;
   if (particles_ != nullptr) {
-    ghosts_->update_boxes(particles_->partner_box(), particles_->partner_images());
-    particles_->take_partners(ghosts_->receive());
-  } else {
+    if (renew) {
+      ghosts_->update_boxes(particles_->partner_box(), particles_->partner_images());
+      particles_->take_partners(ghosts_->receive());
+    } else {
+      particles_->move_partners(ghosts_->receive());
+    }
+    return;
+  }
+  const ContinuumSide::Points p = continuum_->partner_points();
+  if (renew) {
     ghosts_->update_boxes(continuum_->points_box(), PeriodicLengths{});
-    const ContinuumSide::Points p = continuum_->partner_points();
     ghosts_->send(p.id, p.x, p.v, p.mass);
+    continuum_->partners_renewed();
+  } else {
+    ghosts_->resend(p.x, p.v);
   }
 }
 

@@ -7,28 +7,49 @@ namespace pbms::coupling {
 InProcessLink::InProcessLink(ParticleSide& particles, ContinuumSide& continuum)
     : particles_(particles), continuum_(continuum) {}
 
+// As between programs, the partners are chosen afresh only when either
+// side has moved half the skin, so that the DPD side keeps its list: the
+// same algorithm, one process.
 void InProcessLink::share_partners() {
+  const bool a = particles_.wants_new_partners();
+  const bool b = continuum_.wants_new_partners();
   const ContinuumSide::Points p = continuum_.partner_points();
+  if (chosen_ && !a && !b) {
+    for (std::size_t k = 0; k < partners_.size(); ++k) {
+      const std::size_t i = partner_point_[k];
+      for (std::size_t c = 0; c < 3; ++c) partners_[k].x[c] = p.x[i][c] + partner_shift_[k][c];
+      partners_[k].v = p.v[i];
+    }
+    particles_.move_partners(partners_);
+    return;
+  }
   const PeriodicLengths images = particles_.partner_images();
-  std::vector<GhostPoint> partners;
+  partners_.clear();
   partner_point_.clear();
+  partner_shift_.clear();
   for (std::size_t i = 0; i < p.id.size(); ++i) {
     for (int sz = -1; sz <= 1; ++sz)
       for (int sy = -1; sy <= 1; ++sy)
         for (int sx = -1; sx <= 1; ++sx) {
           const std::array<int, 3> s{sx, sy, sz};
           bool ok = true;
-          Vec3 x = p.x[i];
-          for (std::size_t a = 0; a < 3; ++a) {
-            if (s[a] != 0 && images.length[a] <= 0.0) ok = false;
-            x[a] += s[a] * images.length[a];
+          Vec3 shift{};
+          for (std::size_t c = 0; c < 3; ++c) {
+            if (s[c] != 0 && images.length[c] <= 0.0) ok = false;
+            shift[c] = s[c] * images.length[c];
           }
           if (!ok) continue;
-          partners.push_back({p.id[i], x, p.v[i], p.mass[i]});
+          partners_.push_back({p.id[i],
+                               {p.x[i][0] + shift[0], p.x[i][1] + shift[1], p.x[i][2] + shift[2]},
+                               p.v[i],
+                               p.mass[i]});
           partner_point_.push_back(i);
+          partner_shift_.push_back(shift);
         }
   }
-  particles_.take_partners(partners);
+  particles_.take_partners(partners_);
+  continuum_.partners_renewed();
+  chosen_ = true;
 }
 
 void InProcessLink::return_reactions() {

@@ -54,6 +54,7 @@ void PointGhostsAcrossPrograms::update_boxes(const SpaceBox& box, const Periodic
   }
   send_buf_.resize(peers_.size());
   sent_from_.resize(peers_.size());
+  sent_shift_.resize(peers_.size());
 }
 
 std::vector<std::array<int, 3>> PointGhostsAcrossPrograms::images(
@@ -84,8 +85,8 @@ std::vector<std::array<int, 3>> PointGhostsAcrossPrograms::images(
 // Every image of one point within reach of `to`, one pass over the axes
 // (at most two images per periodic axis qualify).
 int PointGhostsAcrossPrograms::append_images(std::int64_t id, const Vec3& x, const Vec3& v,
-                                             double mass, std::size_t p,
-                                             std::vector<double>& buf) const {
+                                             double mass, std::size_t p, std::vector<double>& buf,
+                                             std::vector<Vec3>& shifts) const {
   const auto peer = static_cast<std::size_t>(peers_[p]);
   const SpaceBox& to = remote_boxes_[peer];
   const PeriodicLengths& periodic = remote_images_[peer];
@@ -103,9 +104,11 @@ int PointGhostsAcrossPrograms::append_images(std::int64_t id, const Vec3& x, con
   for (int k = 0; k < count[2]; ++k)
     for (int j = 0; j < count[1]; ++j)
       for (int i = 0; i < count[0]; ++i) {
-        buf.insert(buf.end(), {static_cast<double>(id), at[0][static_cast<std::size_t>(i)],
-                               at[1][static_cast<std::size_t>(j)],
-                               at[2][static_cast<std::size_t>(k)], v[0], v[1], v[2], mass});
+        const Vec3 at_image{at[0][static_cast<std::size_t>(i)], at[1][static_cast<std::size_t>(j)],
+                            at[2][static_cast<std::size_t>(k)]};
+        buf.insert(buf.end(), {static_cast<double>(id), at_image[0], at_image[1], at_image[2], v[0],
+                               v[1], v[2], mass});
+        shifts.push_back({at_image[0] - x[0], at_image[1] - x[1], at_image[2] - x[2]});
       }
   return count[0] * count[1] * count[2];
 }
@@ -114,16 +117,43 @@ void PointGhostsAcrossPrograms::send(const std::vector<std::int64_t>& id,
                                      const std::vector<Vec3>& x, const std::vector<Vec3>& v,
                                      const std::vector<double>& mass) {
   const double start = MPI_Wtime();
-  requests_.assign(peers_.size(), MPI_REQUEST_NULL);
   for (std::size_t p = 0; p < peers_.size(); ++p) {
     auto& buf = send_buf_[p];
     auto& from = sent_from_[p];
     buf.clear();
     from.clear();
+    sent_shift_[p].clear();
     for (std::size_t i = 0; i < id.size(); ++i) {
-      const int n = append_images(id[i], x[i], v[i], mass[i], p, buf);
+      const int n = append_images(id[i], x[i], v[i], mass[i], p, buf, sent_shift_[p]);
       from.insert(from.end(), static_cast<std::size_t>(n), i);
     }
+  }
+  profile_.seconds_packing += MPI_Wtime() - start;
+  post_sends();
+}
+
+void PointGhostsAcrossPrograms::resend(const std::vector<Vec3>& x, const std::vector<Vec3>& v) {
+  const double start = MPI_Wtime();
+  for (std::size_t p = 0; p < peers_.size(); ++p) {
+    auto& buf = send_buf_[p];
+    const auto& from = sent_from_[p];
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      double* r = buf.data() + k * kRecord;
+      for (std::size_t a = 0; a < 3; ++a) {
+        r[1 + a] = x[from[k]][a] + sent_shift_[p][k][a];
+        r[4 + a] = v[from[k]][a];
+      }
+    }
+  }
+  profile_.seconds_packing += MPI_Wtime() - start;
+  post_sends();
+}
+
+void PointGhostsAcrossPrograms::post_sends() {
+  const double start = MPI_Wtime();
+  requests_.assign(peers_.size(), MPI_REQUEST_NULL);
+  for (std::size_t p = 0; p < peers_.size(); ++p) {
+    const auto& buf = send_buf_[p];
     mpi::check(MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peers_[p], kGhostTag,
                          inter_, &requests_[p]),
                "MPI_Isend (ghosts across programs)");

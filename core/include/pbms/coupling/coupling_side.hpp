@@ -6,6 +6,8 @@
 // CouplingLink's business.
 #pragma once
 
+#include <mpi.h>
+
 #include <cstdint>
 #include <vector>
 
@@ -57,6 +59,12 @@ class GridSide {
   virtual void update_and_map_back() = 0;
   // Nodal velocities, stresses, moves (s-11 to s-14); the step is done.
   virtual void finish_step() = 0;
+  // The ranks of this side's program.
+  [[nodiscard]] virtual MPI_Comm comm() const = 0;
+  // Whether the partners must be chosen afresh this step (this side moved
+  // too far since they were, or its particles changed rank); a partner set
+  // kept lets the DPD side keep its neighbour list. Collective over comm().
+  [[nodiscard]] virtual bool wants_new_partners() = 0;
 };
 
 // The side whose particles take pair partners (DPD).
@@ -66,8 +74,10 @@ class ParticleSide : public GridSide {
   // which it needs their images (0 where its own neighbour list wraps).
   [[nodiscard]] virtual SpaceBox partner_box() const = 0;
   [[nodiscard]] virtual PeriodicLengths partner_images() const = 0;
-  // This step's partners, before compute_forces.
+  // This step's partners, before compute_forces: a new set, or the last
+  // set moved (same points, same order).
   virtual void take_partners(const std::vector<GhostPoint>& partners) = 0;
+  virtual void move_partners(const std::vector<GhostPoint>& partners) = 0;
   // After compute_forces: the force on each partner from this side's
   // particles, in the order given.
   [[nodiscard]] virtual std::vector<Vec3> partner_forces() const = 0;
@@ -82,7 +92,11 @@ class ContinuumSide : public GridSide {
     const std::vector<Vec3>& v;
     const std::vector<double>& mass;
   };
+  // Positions continuous in time (not wrapped on periodic axes) since the
+  // partners were last chosen.
   [[nodiscard]] virtual Points partner_points() const = 0;
+  // The partners were chosen afresh from partner_points().
+  virtual void partners_renewed() = 0;
   // The box this rank's points lie in.
   [[nodiscard]] virtual SpaceBox points_box() const = 0;
   // Before map_to_grid: the force on each point (indexed like

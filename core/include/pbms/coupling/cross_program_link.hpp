@@ -22,7 +22,9 @@ class CrossProgramLink : public CouplingLink {
  public:
   // Collective over both programs (the ghost plan swaps boxes). `mine` and
   // `theirs` split the shared grid over this program's and the other's
-  // ranks; `band` is the nodes both may touch; `reach` the pair cutoff.
+  // ranks; `band` is the nodes both may touch; `reach` the pair cutoff plus
+  // the DPD neighbour list's skin (partners are chosen afresh only when
+  // either side has moved more than half the skin).
   // Everything passed must outlive the link.
   CrossProgramLink(MPI_Comm inter, ParticleSide& side, const grid::GridPartition& mine,
                    const grid::GridPartition& theirs, const grid::NodeBox& band, double reach);
@@ -42,6 +44,8 @@ class CrossProgramLink : public CouplingLink {
   ContinuumSide* continuum_ = nullptr;
   NodalSumAcrossPrograms sum_;
   std::unique_ptr<PointGhostsAcrossPrograms> ghosts_;
+  MPI_Comm inter_;
+  bool chosen_ = false;  // partners chosen at least once
 };
 
 }  // namespace pbms::coupling

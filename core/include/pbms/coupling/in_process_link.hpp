@@ -25,7 +25,10 @@ class InProcessLink : public CouplingLink {
  private:
   ParticleSide& particles_;
   ContinuumSide& continuum_;
+  std::vector<GhostPoint> partners_;
   std::vector<std::size_t> partner_point_;  // the continuum point of each partner
+  std::vector<Vec3> partner_shift_;         // and the image it is at
+  bool chosen_ = false;
 };
 
 }  // namespace pbms::coupling

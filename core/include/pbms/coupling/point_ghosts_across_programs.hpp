@@ -65,6 +65,11 @@ class PointGhostsAcrossPrograms {
   // Sender: every point within reach of each receiver that needs it.
   void send(const std::vector<std::int64_t>& id, const std::vector<Vec3>& x,
             const std::vector<Vec3>& v, const std::vector<double>& mass);
+  // Sender: the same points as the last send(), to the same receivers at
+  // the same images, at their new positions and velocities (indexed like
+  // that send's points; no point may have been added, removed or
+  // reordered since). Lets a receiver keep its neighbour list.
+  void resend(const std::vector<Vec3>& x, const std::vector<Vec3>& v);
   // Receiver: the ghosts of this step, by sender rank then sender order.
   const std::vector<GhostPoint>& receive();
 
@@ -87,7 +92,8 @@ class PointGhostsAcrossPrograms {
                                                        const PeriodicLengths& periodic) const;
   // Appends each image of one point within reach of peer p; returns how many.
   int append_images(std::int64_t id, const Vec3& x, const Vec3& v, double mass, std::size_t p,
-                    std::vector<double>& buf) const;
+                    std::vector<double>& buf, std::vector<Vec3>& shifts) const;
+  void post_sends();
 
   MPI_Comm inter_;
   Side side_;
@@ -98,6 +104,7 @@ class PointGhostsAcrossPrograms {
   std::vector<PeriodicLengths> remote_images_;  // what each receiver asked for
   std::vector<int> peers_;
   std::vector<std::vector<std::size_t>> sent_from_;  // sender: the point of each record, per peer
+  std::vector<std::vector<Vec3>> sent_shift_;        // and the image shift it was sent at
   std::vector<std::size_t> received_;                // receiver: ghosts from each peer
   std::vector<std::vector<double>> send_buf_;
   std::vector<MPI_Request> requests_;
