@@ -413,7 +413,8 @@ def plot_profiles_together(stages, outdir):
 
 def plot_runs_together(stages, outdir):
     """Stages of one kind of analysis side by side (the DPD/MPM-grid model
-    against DPD-only): every tension curve on one axis, every impact's slab
+    against DPD-only, an MPM rod against the DPD rod it was calibrated
+    from): every tension curve on one axis, every impact's slab
     displacements on one axis."""
     written = []
     curves = [s for s in stages if s.tables.get("tension_curve") is not None]
@@ -422,7 +423,10 @@ def plot_runs_together(stages, outdir):
         for st in curves:
             t = st.tables["tension_curve"]
             grid = st.attrs.get("grid_cell_size")
-            name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
+            if st.kind == "mpm_run":
+                name = f"{st.name} (MPM)"
+            else:
+                name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
             ax.plot(t["strain"], t["stress"], lw=1.0,
                     label=f"{name}, E = {st.scalar('youngs_modulus'):.2f} GPa")
         ax.set_xlabel(label("strain", curves[0].tables["tension_curve"].units.get("strain")))
@@ -437,7 +441,10 @@ def plot_runs_together(stages, outdir):
         for k, st in enumerate(impacts):
             t = st.tables["slabs"]
             grid = st.attrs.get("grid_cell_size")
-            name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
+            if st.kind == "mpm_run":
+                name = f"{st.name} (MPM)"
+            else:
+                name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
             c = f"C{k}"
             ax.plot(t["time"], t["near_displacement"], "-", color=c, lw=1.0,
                     label=f"{name}: near slab, c = {st.scalar('wave_speed'):.0f} m/s")

@@ -14,7 +14,7 @@
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "pbms/analysis/first_crossing.hpp"
-#include "pbms/analysis/statistics.hpp"
+#include "pbms/analysis/tension_test.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
 #include "pbms/mpi/comm.hpp"
@@ -283,35 +283,7 @@ void run_stage(StageContext& ctx, Mode mode) {
     }
   }
   if (mode == Mode::kTension) {
-    // The elastic part ends at the yield point, the stress maximum, unless
-    // the config bounds it.
-    const auto peak =
-        static_cast<std::size_t>(std::max_element(stress.begin(), stress.end()) - stress.begin());
-    const double fit_strain = p["tension"]["fit_strain"] ? p["tension"]["fit_strain"].as<double>()
-                                                         : (strain.empty() ? 0.0 : strain[peak]);
-    std::vector<double> fx, fy;
-    for (std::size_t k = 0; k < strain.size(); ++k) {
-      if (strain[k] <= fit_strain) {
-        fx.push_back(strain[k]);
-        fy.push_back(stress[k]);
-      }
-    }
-    if (fx.size() < 3) {
-      throw Error(fmt::format(
-          "stage '{}': fewer than 3 samples up to a strain of {:.4g}; run longer or sample "
-          "more often",
-          ctx.stage(), fit_strain));
-    }
-    r.add_scalar("fit_strain", fit_strain, "1");
-    if (!p["tension"]["fit_strain"] && peak + 1 == stress.size()) {
-      r.attributes["tension_note"] =
-          "the stress was still rising at the end: no yield point, the fit covers the whole run";
-    }
-    const auto fit = analysis::fit_line(fx, fy);
-    r.add_scalar("youngs_modulus", fit.slope, "GPa");
-    r.add_scalar("max_stress", *std::max_element(stress.begin(), stress.end()), "GPa");
-    r.add_column("tension_curve", "strain", "1", strain);
-    r.add_column("tension_curve", "stress", "GPa", stress);
+    analysis::TensionTest::from_yaml(p["tension"]).report(r, strain, stress, ctx.stage());
     r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area);
   }
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],

@@ -1,4 +1,5 @@
 #include "dpd_run.hpp"
+#include "pbms/analysis/tension_test.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 
 namespace pbms::dpd {
@@ -204,16 +205,14 @@ config::StageKindSpec DpdRunStage::spec() {
            .def(0.25)
            .above(0)},
       "mode: impact"));
+  std::vector<Param> tension = {
+      Param::identifier("specimen", "The rod: a body or group, grips included").require(),
+      Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
+      Param::real("area", Dimension::kNone, "Cross-section, Å^2 (default: from the extents)")
+          .above(0)};
+  for (auto& q : analysis::TensionTest::params()) tension.push_back(std::move(q));
   s.params.push_back(Param::map(
-      "tension",
-      {Param::identifier("specimen", "The rod: a body or group, grips included").require(),
-       Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
-       Param::real("area", Dimension::kNone, "Cross-section, Å^2 (default: from the extents)")
-           .above(0),
-       Param::real("fit_strain", Dimension::kNone,
-                   "Largest strain of the linear fit; default the strain at the stress maximum "
-                   "(the yield point), so that the fit covers the elastic part")
-           .above(0)},
+      "tension", std::move(tension),
       "mode: tension. Stress is the specimen's mean conservative virial stress, strain its "
       "elongation over its length"));
   s.outputs = common_outputs();
@@ -224,14 +223,7 @@ config::StageKindSpec DpdRunStage::spec() {
                        "First-motion time of the near slab (impact)"});
   s.outputs.push_back({"first_motion_far", OutputSpec::Shape::kScalar, "ps",
                        "First-motion time of the far slab (impact)"});
-  s.outputs.push_back({"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
-                       "Slope of the linear fit of stress to strain up to fit_strain (tension)"});
-  s.outputs.push_back(
-      {"max_stress", OutputSpec::Shape::kScalar, "GPa", "Largest specimen stress (tension)"});
-  s.outputs.push_back({"fit_strain", OutputSpec::Shape::kScalar, "1",
-                       "Upper end of the strain range fitted (tension)"});
-  s.outputs.push_back(
-      {"tension_curve", OutputSpec::Shape::kTable, "", "Strain and stress samples (tension)"});
+  for (auto& o : analysis::TensionTest::outputs("tension")) s.outputs.push_back(std::move(o));
   return s;
 }
 

@@ -11,6 +11,7 @@
 #include "mpm_output.hpp"
 #include "mpm_run_params.hpp"
 #include "probe_series.hpp"
+#include "rod_tension_analysis.hpp"
 
 namespace pbms::mpm {
 namespace {
@@ -43,12 +44,15 @@ void MpmRunStage::run(StageContext& ctx) {
   ProbeSeries probes(p["probes"], engine.model(), params.metal_units);
   std::optional<BarWaveAnalysis> bar;
   if (p["wave_front"]) bar.emplace(p["wave_front"], engine, dt, steps, ctx.stage());
+  std::optional<RodTensionAnalysis> tension;
+  if (p["tension"]) tension.emplace(p["tension"], engine, params.metal_units, ctx.stage());
   MpmOutput output(engine, params, ctx.stage_dir(), ctx.stage());
 
   // A run of 0 steps still samples and writes the initial state.
   const auto sample = [&](std::int64_t n, double t) {
     probes.sample(engine, n, t);
     if (bar) bar->sample(engine, t);
+    if (tension) tension->sample(engine);
   };
   sample(0, 0.0);
   output.write(engine, 0, 0.0);
@@ -67,6 +71,7 @@ void MpmRunStage::run(StageContext& ctx) {
   r.add_scalar("particles", static_cast<double>(engine.total_points()), "1");
   probes.report(r, params, ctx.stage());
   if (bar) bar->report(r, params.metal_units, ctx.stage());
+  if (tension) tension->report(r, ctx.stage());
   r.attributes["gradient"] = params.gradient;
   const auto& dims = engine.partition().dims();
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", dims[0], dims[1], dims[2]);

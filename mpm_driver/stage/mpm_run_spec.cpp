@@ -1,4 +1,5 @@
 #include "mpm_run.hpp"
+#include "pbms/analysis/tension_test.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 #include "pbms/grid/shape_function.hpp"
 
@@ -160,6 +161,17 @@ config::StageKindSpec MpmRunStage::spec() {
       "1-D bar analysis: wave-front speed, plateau stress and the profile against the exact "
       "solution with reflections");
 
+  std::vector<Param> tension_keys = {
+      Param::identifier("specimen", "The rod: a group or body, grips included").require(),
+      Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x"))};
+  for (auto& q : analysis::TensionTest::params()) tension_keys.push_back(std::move(q));
+  const Param tension = Param::map(
+      "tension", std::move(tension_keys),
+      "Tension test of a rod (metal units): stress is the integral of the axial stress over "
+      "the rod's points divided by its starting cross-section times its current length, "
+      "strain its elongation over its length (each extent plus one point spacing), as "
+      "dpd_run's tension measures a DPD rod");
+
   s.params = {
       Param::choice("units", {"metal", "consistent"},
                     "metal: LAMMPS metal units; consistent: plain numbers of one consistent "
@@ -212,6 +224,7 @@ config::StageKindSpec MpmRunStage::spec() {
           .def(0)
           .at_least(0),
       wave_front,
+      tension,
       Param::string("period_of",
                     "A probe column (e.g. tip.x); its oscillation period is reported as `period`"),
   };
@@ -239,6 +252,7 @@ config::StageKindSpec MpmRunStage::spec() {
       {"probes", OutputSpec::Shape::kTable, "", "Probe samples"},
       {"profile", OutputSpec::Shape::kTable, "", "Stress profile and exact solution (wave_front)"},
   };
+  for (auto& o : analysis::TensionTest::outputs("tension")) s.outputs.push_back(std::move(o));
   return s;
 }
 

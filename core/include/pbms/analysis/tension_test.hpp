@@ -1,0 +1,38 @@
+// The analysis part of a tension stage (dpd_run mode tension, mpm_run's
+// `tension` map): its keys, declared once for both programs' specs, read
+// once into this struct, and the results it reports from the sampled
+// stress-strain curve. The stress measure itself is each program's own.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "pbms/analysis/tension_curve.hpp"
+#include "pbms/config/param.hpp"
+#include "pbms/config/stage_kind.hpp"
+#include "pbms/results.hpp"
+
+namespace pbms::analysis {
+
+struct TensionTest {
+  std::optional<double> fit_strain;  // empty: up to the stress maximum
+  YieldRule yield;
+
+  // The keys inside a stage's tension map that this analysis owns.
+  static std::vector<config::Param> params();
+  // youngs_modulus, max_stress, fit_strain, yield_stress, yield_strain and
+  // the tension_curve table; `what` names the mode in their docs.
+  static std::vector<config::OutputSpec> outputs(const std::string& what);
+  // From a checked tension map.
+  static TensionTest from_yaml(const YAML::Node& tension);
+
+  // Rank 0 of a finished run: strain (1) and stress (GPa), one sample each.
+  // Throws pbms::Error naming the stage with fewer than 3 samples to fit.
+  void report(StageResults& r, const std::vector<double>& strain, const std::vector<double>& stress,
+              const std::string& stage) const;
+};
+
+}  // namespace pbms::analysis

@@ -1,0 +1,103 @@
+#include "pbms/analysis/tension_test.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "pbms/analysis/statistics.hpp"
+#include "pbms/error.hpp"
+
+namespace pbms::analysis {
+
+using config::OutputSpec;
+using config::Param;
+using units::Dimension;
+
+std::vector<Param> TensionTest::params() {
+  const YieldRule d;
+  return {
+      Param::real("fit_strain", Dimension::kNone,
+                  "Largest strain of the linear fit; default the strain at the stress maximum, "
+                  "so that the fit covers the elastic part")
+          .above(0)
+          .referable(),
+      Param::real("yield_drop", Dimension::kNone,
+                  "A load drop is a fall of the smoothed stress from a peak by more than this "
+                  "fraction of the peak (and more than 3 times the samples' noise); the first "
+                  "one is the yield point (docs/hierarchy.md)")
+          .def(d.drop_fraction)
+          .above(0)
+          .at_most(1),
+      Param::real("yield_smoothing", Dimension::kNone,
+                  "Strain window of the centred running mean the yield point is found on")
+          .def(d.smoothing)
+          .above(0),
+  };
+}
+
+std::vector<OutputSpec> TensionTest::outputs(const std::string& what) {
+  return {
+      {"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
+       "Slope of the linear fit of stress to strain up to fit_strain (" + what + ")"},
+      {"max_stress", OutputSpec::Shape::kScalar, "GPa", "Largest specimen stress (" + what + ")"},
+      {"fit_strain", OutputSpec::Shape::kScalar, "1",
+       "Upper end of the strain range fitted (" + what + ")"},
+      {"yield_stress", OutputSpec::Shape::kScalar, "GPa",
+       "Smoothed stress at the first load drop (" + what + "; absent without a drop)"},
+      {"yield_strain", OutputSpec::Shape::kScalar, "1",
+       "Strain at the first load drop (" + what + "; absent without a drop)"},
+      {"tension_curve", OutputSpec::Shape::kTable, "", "Strain and stress samples (" + what + ")"},
+  };
+}
+
+TensionTest TensionTest::from_yaml(const YAML::Node& t) {
+  TensionTest s;
+  if (t["fit_strain"]) s.fit_strain = t["fit_strain"].as<double>();
+  s.yield.drop_fraction = t["yield_drop"].as<double>();
+  s.yield.smoothing = t["yield_smoothing"].as<double>();
+  return s;
+}
+
+void TensionTest::report(StageResults& r, const std::vector<double>& strain,
+                         const std::vector<double>& stress, const std::string& stage) const {
+  // The elastic part ends at the stress maximum unless the config bounds it.
+  const auto peak =
+      static_cast<std::size_t>(std::max_element(stress.begin(), stress.end()) - stress.begin());
+  const double end = fit_strain ? *fit_strain : (strain.empty() ? 0.0 : strain[peak]);
+  std::vector<double> fx, fy;
+  for (std::size_t k = 0; k < strain.size(); ++k) {
+    if (strain[k] <= end) {
+      fx.push_back(strain[k]);
+      fy.push_back(stress[k]);
+    }
+  }
+  if (fx.size() < 3) {
+    throw Error(fmt::format(
+        "stage '{}': fewer than 3 samples up to a strain of {:.4g}; run longer or sample more "
+        "often",
+        stage, end));
+  }
+  r.add_scalar("fit_strain", end, "1");
+  if (!fit_strain && peak + 1 == stress.size()) {
+    r.attributes["tension_note"] =
+        "the stress was still rising at the end: no yield point, the fit covers the whole run";
+  }
+  const auto fit = fit_line(fx, fy);
+  r.add_scalar("youngs_modulus", fit.slope, "GPa", fit.slope_error);
+  r.add_scalar("max_stress", stress[peak], "GPa");
+  const YieldPoint y = first_load_drop(strain, stress, yield);
+  if (y.found) {
+    r.add_scalar("yield_stress", y.stress, "GPa");
+    r.add_scalar("yield_strain", y.strain, "1");
+  } else {
+    r.attributes["yield_note"] = fmt::format(
+        "no load drop of more than {:g} of the peak stress (noise {:.3g} GPa): no yield point; "
+        "run longer",
+        yield.drop_fraction, y.noise);
+  }
+  r.attributes["stress_noise_GPa"] = fmt::format("{:.4g}", y.noise);
+  r.add_column("tension_curve", "strain", "1", strain);
+  r.add_column("tension_curve", "stress", "GPa", stress);
+}
+
+}  // namespace pbms::analysis

@@ -1,0 +1,100 @@
+#include "rod_tension_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "pbms/error.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::mpm {
+namespace {
+
+// The smallest gap between distinct coordinates of the rod's points along
+// `axis` on any rank: the point spacing, so that a rod of n points spans
+// n spacings, as a DPD rod of n planes spans n plane spacings.
+double point_spacing(const MpmEngine& engine, std::uint32_t mask, std::size_t axis) {
+  const MaterialPoints& pts = engine.points();
+  std::vector<double> c;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (pts.in_group(i, mask)) c.push_back(pts.x[i][axis]);
+  }
+  std::sort(c.begin(), c.end());
+  double gap = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 1; k < c.size(); ++k) {
+    const double d = c[k] - c[k - 1];
+    if (d > 1e-9 * std::max(1.0, std::abs(c[k]))) gap = std::min(gap, d);
+  }
+  double out = 0.0;
+  mpi::check(MPI_Allreduce(&gap, &out, 1, MPI_DOUBLE, MPI_MIN, engine.comm()), "MPI_Allreduce");
+  return std::isfinite(out) ? out : 0.0;
+}
+
+}  // namespace
+
+RodTensionAnalysis::RodTensionAnalysis(const YAML::Node& t, const MpmEngine& engine,
+                                       bool metal_units, const std::string& stage)
+    : test_(analysis::TensionTest::from_yaml(t)),
+      mask_(engine.model().group_mask(t["specimen"].as<std::string>())) {
+  if (!metal_units) {
+    throw Error(fmt::format("stage '{}': tension reports GPa and needs units: metal", stage));
+  }
+  const auto a = t["axis"].as<std::string>();
+  axis_ = a == "x" ? 0 : a == "y" ? 1 : 2;
+  for (std::size_t k = 0; k < 3; ++k) spacing_[k] = point_spacing(engine, mask_, k);
+  const std::vector<double> m = measure(engine);
+  length0_ = m[axis_];
+  area0_ = 1.0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (k != axis_) area0_ *= m[k];
+  }
+  if (!(length0_ > 0.0 && area0_ > 0.0)) {
+    throw Error(fmt::format("stage '{}': tension.specimen '{}' holds no extended rod", stage,
+                            t["specimen"].as<std::string>()));
+  }
+}
+
+std::vector<double> RodTensionAnalysis::measure(const MpmEngine& engine) const {
+  const MaterialPoints& pts = engine.points();
+  const double inf = std::numeric_limits<double>::infinity();
+  // Minima of x and of -x in one reduction.
+  std::array<double, 6> lo{inf, inf, inf, inf, inf, inf};
+  double work = 0.0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!pts.in_group(i, mask_)) continue;
+    for (std::size_t k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], pts.x[i][k]);
+      lo[k + 3] = std::min(lo[k + 3], -pts.x[i][k]);
+    }
+    work += pts.state[i].stress.voigt[axis_] * pts.volume(i);
+  }
+  std::array<double, 6> glo{};
+  double gwork = 0.0;
+  mpi::check(MPI_Allreduce(lo.data(), glo.data(), 6, MPI_DOUBLE, MPI_MIN, engine.comm()),
+             "MPI_Allreduce");
+  mpi::check(MPI_Allreduce(&work, &gwork, 1, MPI_DOUBLE, MPI_SUM, engine.comm()), "MPI_Allreduce");
+  std::vector<double> out(4);
+  for (std::size_t k = 0; k < 3; ++k) out[k] = -glo[k + 3] - glo[k] + spacing_[k];
+  out[3] = gwork;
+  return out;
+}
+
+void RodTensionAnalysis::sample(const MpmEngine& engine) {
+  const std::vector<double> m = measure(engine);
+  const double length = m[axis_];
+  strain_.push_back((length - length0_) / length0_);
+  // The volume integral of the axial stress over the starting cross-section
+  // times the current length: the measure of dpd_run's tension (its virial
+  // over A0 L), so that both rods are judged alike.
+  stress_.push_back(m[3] / (area0_ * length) / units::kBarPerGPa);
+}
+
+void RodTensionAnalysis::report(StageResults& r, const std::string& stage) const {
+  test_.report(r, strain_, stress_, stage);
+  r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area0_);
+}
+
+}  // namespace pbms::mpm

@@ -1,0 +1,48 @@
+// The tension analysis of an mpm_run (seed §5.2.2 on a continuum rod): the
+// rod's mean axial stress and its strain sampled through the run, then
+// Young's modulus and the yield point by the rules dpd_run's tension uses
+// (analysis::TensionTest), so that an MPM rod calibrated from a DPD rod can
+// be held against it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "engine/mpm_engine.hpp"
+#include "pbms/analysis/tension_test.hpp"
+#include "pbms/results.hpp"
+
+namespace pbms::mpm {
+
+class RodTensionAnalysis {
+ public:
+  // `tension` is the stage's tension map. Collective: measures the rod's
+  // starting length and cross-section. Throws pbms::Error naming the stage
+  // unless the run is in metal units.
+  RodTensionAnalysis(const YAML::Node& tension, const MpmEngine& engine, bool metal_units,
+                     const std::string& stage);
+
+  // Collective: one sample of strain and stress.
+  void sample(const MpmEngine& engine);
+  // The results of analysis::TensionTest, and the cross-section (the same on
+  // every rank).
+  void report(StageResults& r, const std::string& stage) const;
+
+ private:
+  // The rod's extents along x, y, z, each plus the point spacing along it,
+  // over all ranks; the sum of sigma_aa V as the fourth entry.
+  [[nodiscard]] std::vector<double> measure(const MpmEngine& engine) const;
+
+  analysis::TensionTest test_;
+  std::uint32_t mask_ = 0;
+  std::size_t axis_ = 0;
+  std::array<double, 3> spacing_{};
+  double length0_ = 0.0, area0_ = 0.0;
+  std::vector<double> strain_, stress_;
+};
+
+}  // namespace pbms::mpm
