@@ -10,7 +10,8 @@ CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
 kill_one() {  # PROGRAM WORLD_RANK EXPECTED_PROGRAM_RANK
   local program=$1 world=$2 expect=$3
   rm -rf runs
-  sed 's/steps: 300/steps: 200000/' "$CONFIG" > long.yaml
+  # A bar at rest (the flyer still): it runs until killed, not off the grid.
+  sed 's/steps: 300/steps: 200000/; s/velocity: \[5, 0, 0\]/velocity: [0, 0, 0]/' "$CONFIG" > long.yaml
   "$PBMS" run long.yaml > out.txt 2> err.txt &
   local pid=$! run=runs/concurrent_small victim=""
   for _ in $(seq 1 600); do
