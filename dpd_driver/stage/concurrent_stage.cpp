@@ -247,7 +247,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': mpm_driver is not running", ctx.stage()));
   }
-  const YAML::Node material = ctx.material(p["material"].as<std::string>());
+  const YAML::Node material = ctx.material(cp.material);
   DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
   // A state from an earlier stage may lie a little outside the box on a
   // periodic axis (positions wrap at list builds only); the regions see it
@@ -347,14 +347,12 @@ void ConcurrentStage::run(StageContext& ctx) {
   auto& r = ctx.results();
   if (trajectory)
     r.files.push_back((std::filesystem::path(ctx.stage()) / "dpd_particles.h5md").string());
-  r.attributes["interface"] = p["interface"].as<std::string>();
+  r.attributes["interface"] = cp.interface_name;
   r.add_scalar("dpd_particles", dpd_count, "1");
   r.add_scalar("mpm_points", mpm_count, "1");
   r.add_scalar("dpd_temperature", engine.thermo(false).temperature, "K");
   // c = sqrt(E / rho) of the MPM material, bar Å³/(g/mol) to Å²/ps².
-  const double a = p["continuum"]["lattice_constant"]
-                       ? p["continuum"]["lattice_constant"].as<double>()
-                       : material["lattice_constant"].as<double>();
+  const double a = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());
   const double rho = 4.0 * material["mass"].as<double>() / (a * a * a);
   const double c = std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
   r.add_scalar("momentum_change", worst_dp / (body_mass * c), "1");

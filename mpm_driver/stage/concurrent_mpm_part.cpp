@@ -29,7 +29,7 @@ constexpr std::size_t kRowWidth = 9;  // id, x, v, mass, group bits
 // The handed-over points on the shared grid. Rigid and frozen groups with
 // points here are held at their velocity, as an MPM grip is.
 MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover& body,
-                  const std::vector<std::string>& groups, const YAML::Node& motion, double volume) {
+                  const std::vector<std::string>& groups, double volume) {
   MpmModel m;
   m.grid = cp.grid;
   m.periodic = cp.periodic;
@@ -50,16 +50,11 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover
     m.points.v.back() = {d[4], d[5], d[6]};
     m.points.mass.back() = d[7];
   }
-  for (const auto& mo : motion) {
-    const auto kind = mo["kind"].as<std::string>();
-    if (kind != "rigid" && kind != "frozen") continue;
+  for (const auto& h : cp.held) {
     PointVelocity pv;
-    pv.group_mask = m.group_mask(mo["group"].as<std::string>());
+    pv.group_mask = m.group_mask(h.group);
     pv.axis = {true, true, true};
-    if (kind == "rigid") {
-      const auto v = mo["velocity"].as<std::vector<double>>();
-      pv.velocity = {v[0], v[1], v[2]};
-    }
+    pv.velocity = h.velocity;
     m.bc.point_velocities.push_back(pv);
   }
   return m;
@@ -113,8 +108,7 @@ config::StageKindSpec ConcurrentMpmPart::spec() {
 }
 
 void ConcurrentMpmPart::run(StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  const coupling::ConcurrentParams cp = coupling::concurrent_params(p);
+  const coupling::ConcurrentParams cp = coupling::concurrent_params(ctx.params());
   const MPI_Comm inter = ctx.peer("dpd_driver");
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': dpd_driver is not running", ctx.stage()));
@@ -126,18 +120,15 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   const auto hi = header["band_hi"].as<std::vector<int>>();
   const grid::NodeBox band{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
   const double reach = header["reach"].as<double>();
-  const YAML::Node material = ctx.material(p["material"].as<std::string>());
-  const double a = p["continuum"]["lattice_constant"]
-                       ? p["continuum"]["lattice_constant"].as<double>()
-                       : material["lattice_constant"].as<double>();
+  const YAML::Node material = ctx.material(cp.material);
+  const double a = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());
   const double volume = a * a * a / 4.0;  // one fcc site
 
   MaterialSet materials;
   materials.models.push_back(std::make_unique<LinearElastic>(cp.youngs_modulus, cp.poisson_ratio));
   materials.names.push_back("continuum");
   materials.density.push_back(material["mass"].as<double>() / volume);
-  MpmEngine engine(ctx.comm(), model_of(cp, body, groups, p["motion"], volume),
-                   std::move(materials));
+  MpmEngine engine(ctx.comm(), model_of(cp, body, groups, volume), std::move(materials));
   ConcurrentMpmSide side(engine, cp.time_step, header["skin"].as<double>());
   int remote = 0;
   MPI_Comm_remote_size(inter, &remote);

@@ -41,7 +41,22 @@ ConcurrentParams concurrent_params(const YAML::Node& p) {
                          r["solver"].as<std::string>() == "mpm" ? Solver::kMpm : Solver::kDpd,
                          geometry::region_from_yaml(r["region"])});
   }
-  c.interface = treatment(p["interface"].as<std::string>());
+  c.interface_name = p["interface"].as<std::string>();
+  c.interface = treatment(c.interface_name);
+  c.material = p["material"].as<std::string>();
+  for (const auto& m : p["motion"]) {
+    const auto kind = m["kind"].as<std::string>();
+    if (kind != "rigid" && kind != "frozen") continue;
+    HeldGroup h{m["group"].as<std::string>(), {0.0, 0.0, 0.0}};
+    if (kind == "rigid") {
+      const auto v = m["velocity"].as<std::vector<double>>();
+      h.velocity = {v[0], v[1], v[2]};
+    }
+    c.held.push_back(h);
+  }
+  if (p["continuum"]["lattice_constant"]) {
+    c.lattice_constant = p["continuum"]["lattice_constant"].as<double>();
+  }
   c.youngs_modulus = p["continuum"]["youngs_modulus"].as<double>();
   c.poisson_ratio = p["continuum"]["poisson_ratio"].as<double>();
   c.ddmp = p["continuum"]["gradient"].as<std::string>("plain") == "ddmp";

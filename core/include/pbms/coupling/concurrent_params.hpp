@@ -43,6 +43,13 @@ struct TensionProbe {
   double fit_strain = 0.0;  // upper end of the linear fit for E
 };
 
+// A group held at a velocity (motion kind rigid, or frozen at rest): on the
+// MPM part, the grip's points are prescribed as an MPM grip is.
+struct HeldGroup {
+  std::string group;
+  Vec3 velocity{0.0, 0.0, 0.0};
+};
+
 struct ConcurrentParams {
   grid::RegularGrid grid{{0.0, 0.0, 0.0}, 1.0, {1, 1, 1}};
   std::array<bool, 3> periodic{false, false, false};
@@ -54,7 +61,13 @@ struct ConcurrentParams {
   InterfaceTreatment interface = InterfaceTreatment::kSeed;
   double youngs_modulus = 0.0;  // bar
   double poisson_ratio = 0.0;
-  bool ddmp = false;       // the MPM points' gradients
+  bool ddmp = false;  // the MPM points' gradients
+  // The DPD crystal's lattice constant at the run's temperature (each MPM
+  // point's volume is a³/4), when given; else the material's.
+  std::optional<double> lattice_constant;
+  std::string material;        // the stage's dpd_mesoparticle material
+  std::string interface_name;  // as written: none, seed, momentum_conserving
+  std::vector<HeldGroup> held;
   double time_step = 0.0;  // ps
   std::int64_t steps = 0, sample_every = 1, particles_every = 0, profile_every = 0;
   int axis = 0;            // of the wave and the interface opening
