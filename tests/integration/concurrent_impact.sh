@@ -9,16 +9,11 @@ source "$(dirname "$0")/lib.sh"
 # treatment, which reflects the wave at the interface here, are printed.
 "$PBMS" run "$ROOT/configs/concurrent_impact.yaml" > run.txt 2>&1 || { cat run.txt; fail "concurrent impact run"; }
 "$PY" - <<'PYEOF'
-import math, sys, yaml
-bad = 0
-def check(ok, text):
-    global bad
-    bad += not ok
-    print(f"{'ok  ' if ok else 'FAIL'} {text}")
-stages = yaml.safe_load(open("runs/concurrent_impact/summary.yaml"))["stages"]
-def value(stage, key):
-    r = stages[stage]["results"].get(key)
-    return r["value"] if r else float("nan")
+import math
+from summary_checks import Checks, summary_values
+checks = Checks()
+check = checks.check
+value = summary_values("concurrent_impact")
 def rel(a, b):
     return 100 * (a / b - 1)
 
@@ -40,6 +35,6 @@ check(mc_open < 0.6, f"momentum-conserving: the largest opening is {mc_open:.2f}
 print(f"info no treatment: wave in the MPM half: {value('concurrent_untreated', 'first_motion_mpm_near')} ps")
 print(f"info seed's treatment: MPM half first motion {value('concurrent_seed', 'first_motion_mpm_near')} ps, "
       f"largest opening {value('concurrent_seed', 'max_interface_opening'):.2f} Å, end {value('concurrent_seed', 'interface_opening'):.2f} Å")
-sys.exit(1 if bad else 0)
+checks.exit()
 PYEOF
 echo "1 passed, 0 failed"

@@ -9,22 +9,17 @@ source "$(dirname "$0")/lib.sh"
 # they differ (docs/concurrent.md).
 "$PBMS" run "$(dirname "$0")/configs/concurrent_tension_small.yaml" > run.txt 2>&1 || { cat run.txt; fail "tension run"; }
 "$PY" - <<'PYEOF'
-import sys, yaml
-bad = 0
-def check(ok, text):
-    global bad
-    bad += not ok
-    print(f"{'ok  ' if ok else 'FAIL'} {text}")
-stages = yaml.safe_load(open("runs/concurrent_tension_small/summary.yaml"))["stages"]
-def value(stage, key):
-    r = stages[stage]["results"].get(key)
-    return r["value"] if r else float("nan")
+import math
+from summary_checks import Checks, summary_values
+checks = Checks()
+check = checks.check
+value = summary_values("concurrent_tension_small")
 untreated = value("tension_untreated", "max_interface_opening")
 treated = value("tension", "max_interface_opening")
 check(untreated > 3.0, f"no treatment: the rod separates at the interface (opening up to {untreated:.2f} Å)")
 check(treated < 0.5, f"momentum-conserving interface: the opening stays at {treated:.2f} Å or less")
 e_c, e_d = value("tension", "youngs_modulus"), value("tension_all_dpd", "youngs_modulus")
 print(f"info elastic slope 0-4 %: concurrent {e_c:.1f} GPa, all DPD {e_d:.1f} GPa ({100 * (e_c / e_d - 1):+.1f} %)")
-sys.exit(1 if bad else 0)
+checks.exit()
 PYEOF
 echo "1 passed, 0 failed"

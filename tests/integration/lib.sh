@@ -5,6 +5,8 @@ ROOT="$1"
 shift
 PBMS="$ROOT/pbms"
 PY=/usr/bin/python3
+# The Python checks import tests/integration/summary_checks.py.
+export PYTHONPATH="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # As ./pbms runs its jobs (mpi_env there), for the tests' own plain `mpirun lmp`.
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
