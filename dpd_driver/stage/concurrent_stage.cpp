@@ -296,7 +296,8 @@ void ConcurrentStage::run(StageContext& ctx) {
     probes.sample(n, v);
     // DPD pairs, and half of each pair with an MPM point (the other half
     // would be the MPM side's; its continuum energy is the stored energy).
-    potential.push_back(engine.thermo(true).potential);
+    const ThermoState thermo = engine.thermo(true);  // one extra pair pass a sample
+    potential.push_back(thermo.potential);
     std::array<double, 3> total{};
     for (std::size_t a = 0; a < 3; ++a) {
       total[a] =
@@ -311,7 +312,7 @@ void ConcurrentStage::run(StageContext& ctx) {
       double f[2] = {coupling::grip_force(ctx.comm(), reactions, masks, tension->left, a),
                      coupling::grip_force(ctx.comm(), reactions, masks, tension->right, a)};
       for (double& x : f) x += coupling::swap_scalar(inter, ctx.comm(), x);
-      const double w = engine.thermo(true).virial[static_cast<std::size_t>(a)];
+      const double w = thermo.virial[static_cast<std::size_t>(a)];
       const double sv = coupling::swap_scalar(inter, ctx.comm(), 0.0);
       tension->add(static_cast<double>(n) * cp.time_step, w, sv, f[0], f[1]);
     }
