@@ -32,6 +32,7 @@ std::vector<Param> TensionTest::params() {
                   "Strain window of the centred running mean the yield point is found on")
           .def(d.smoothing)
           .above(0),
+      GaugeSection::param(),
   };
 }
 
@@ -47,6 +48,18 @@ std::vector<OutputSpec> TensionTest::outputs(const std::string& what) {
       {"yield_strain", OutputSpec::Shape::kScalar, "1",
        "Strain at the first load drop (" + what + "; absent without a drop)"},
       {"tension_curve", OutputSpec::Shape::kTable, "", "Strain and stress samples (" + what + ")"},
+      {"gauge_youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
+       "Slope of the gauge's Cauchy stress against its strain, up to fit_stress_fraction of its "
+       "largest stress (with `gauge`)"},
+      {"gauge_max_stress", OutputSpec::Shape::kScalar, "GPa",
+       "Largest smoothed Cauchy stress of the gauge (with `gauge`)"},
+      {"gauge_yield_stress", OutputSpec::Shape::kScalar, "GPa",
+       "The gauge's smoothed stress at its first load drop, or at the maximum of a curve that "
+       "levels off (with `gauge`)"},
+      {"gauge_yield_strain", OutputSpec::Shape::kScalar, "1",
+       "The gauge's strain at that point (with `gauge`)"},
+      {"gauge_curve", OutputSpec::Shape::kTable, "",
+       "The gauge's strain and Cauchy stress samples (with `gauge`)"},
   };
 }
 
@@ -55,6 +68,7 @@ TensionTest TensionTest::from_yaml(const YAML::Node& t) {
   if (t["fit_strain"]) s.fit_strain = t["fit_strain"].as<double>();
   s.yield.drop_fraction = t["yield_drop"].as<double>();
   s.yield.smoothing = t["yield_smoothing"].as<double>();
+  if (t["gauge"]) s.gauge = GaugeSection::from_yaml(t["gauge"]);
   return s;
 }
 
@@ -98,6 +112,53 @@ void TensionTest::report(StageResults& r, const std::vector<double>& strain,
   r.attributes["stress_noise_GPa"] = fmt::format("{:.4g}", y.noise);
   r.add_column("tension_curve", "strain", "1", strain);
   r.add_column("tension_curve", "stress", "GPa", stress);
+}
+
+void TensionTest::report_gauge(StageResults& r, const std::vector<double>& strain,
+                               const std::vector<double>& stress, const std::string& stage) const {
+  const std::vector<double> smooth = running_mean(strain, stress, yield.smoothing);
+  if (smooth.empty()) throw Error(fmt::format("stage '{}': no gauge samples", stage));
+  const auto top =
+      static_cast<std::size_t>(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
+  const double reach = gauge->fit_stress_fraction * smooth[top];
+  std::vector<double> fx, fy;
+  for (std::size_t k = 0; k < strain.size(); ++k) {
+    fx.push_back(strain[k]);
+    fy.push_back(stress[k]);
+    if (smooth[k] >= reach) break;
+  }
+  if (fx.size() < 3) {
+    throw Error(
+        fmt::format("stage '{}': fewer than 3 gauge samples below {:.4g} GPa; sample more often",
+                    stage, reach));
+  }
+  const auto fit = fit_line(fx, fy);
+  r.add_scalar("gauge_youngs_modulus", fit.slope, "GPa", fit.slope_error);
+  r.add_scalar("gauge_max_stress", smooth[top], "GPa");
+  const YieldPoint y = first_load_drop(strain, stress, yield);
+  // A curve has levelled off when, a tenth of its strain range before the
+  // end, it was already within a load drop's size of its maximum; it
+  // yielded where it first came that close.
+  const double near =
+      smooth[top] - std::max(yield.drop_fraction * smooth[top], yield.noise_multiple * y.noise);
+  const auto onset = static_cast<std::size_t>(
+      std::find_if(smooth.begin(), smooth.end(), [&](double v) { return v >= near; }) -
+      smooth.begin());
+  const bool plateau = strain[onset] < strain.back() - 0.1 * (strain.back() - strain.front());
+  if (y.found) {
+    r.add_scalar("gauge_yield_stress", y.stress, "GPa");
+    r.add_scalar("gauge_yield_strain", y.strain, "1");
+  } else if (plateau) {
+    r.add_scalar("gauge_yield_stress", smooth[top], "GPa");
+    r.add_scalar("gauge_yield_strain", strain[onset], "1");
+    r.attributes["gauge_yield_note"] =
+        "no load drop: the curve levels off; its largest smoothed stress, from where it first "
+        "comes within a drop's size of it";
+  } else {
+    r.attributes["gauge_yield_note"] = "the gauge stress was still rising at the end: no yield";
+  }
+  r.add_column("gauge_curve", "strain", "1", strain);
+  r.add_column("gauge_curve", "stress", "GPa", stress);
 }
 
 }  // namespace pbms::analysis

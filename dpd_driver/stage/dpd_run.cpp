@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "dpd_gauge.hpp"
 #include "dpd_model.hpp"
 #include "dpd_probes.hpp"
 #include "engine/dpd_engine.hpp"
@@ -62,6 +63,15 @@ void run_stage(StageContext& ctx, Mode mode) {
   const std::uint32_t prescribed = model.prescribed_mask;
   const std::vector<std::uint32_t> rigid_bodies = model.rigid_bodies;
   const auto group_motions = model.group_motions;
+  const analysis::TensionTest tension_test = mode == Mode::kTension && p["tension"]
+                                                 ? analysis::TensionTest::from_yaml(p["tension"])
+                                                 : analysis::TensionTest{};
+  std::unique_ptr<DpdGauge> gauge;
+  if (tension_test.gauge) {
+    gauge = std::make_unique<DpdGauge>(*tension_test.gauge, model.particles,
+                                       model.group_mask(p["tension"]["specimen"].as<std::string>()),
+                                       axis_of(p["tension"]["axis"]), 0.5 * lattice_constant);
+  }
   DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
                    std::move(model.particles));
   engine.set_prescribed_groups(prescribed);
@@ -183,6 +193,7 @@ void run_stage(StageContext& ctx, Mode mode) {
       // Tension positive: σ = −W / V, eV/Å^3 to GPa.
       stress.push_back(-thermo.virial[static_cast<std::size_t>(tension_axis)] / (area * length) *
                        units::kBarPerEvPerA3 / units::kBarPerGPa);
+      if (gauge) gauge->sample(engine);
     }
   };
   auto track_slabs = [&](std::int64_t step) {
@@ -283,7 +294,8 @@ void run_stage(StageContext& ctx, Mode mode) {
     }
   }
   if (mode == Mode::kTension) {
-    analysis::TensionTest::from_yaml(p["tension"]).report(r, strain, stress, ctx.stage());
+    tension_test.report(r, strain, stress, ctx.stage());
+    if (gauge) gauge->report(tension_test, r, ctx.stage());
     r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area);
   }
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],

@@ -55,6 +55,52 @@ RodTensionAnalysis::RodTensionAnalysis(const YAML::Node& t, const MpmEngine& eng
     throw Error(fmt::format("stage '{}': tension.specimen '{}' holds no extended rod", stage,
                             t["specimen"].as<std::string>()));
   }
+  if (test_.gauge) find_gauge(engine);
+}
+
+void RodTensionAnalysis::find_gauge(const MpmEngine& engine) {
+  const MaterialPoints& pts = engine.points();
+  std::vector<double> mine;  // id, axial coordinate
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (pts.in_group(i, mask_) && test_.gauge->half(pts.x[i][axis_]) >= 0) {
+      mine.insert(mine.end(), {static_cast<double>(pts.id[i]), pts.x[i][axis_]});
+    }
+  }
+  int ranks = 0;
+  mpi::check(MPI_Comm_size(engine.comm(), &ranks), "MPI_Comm_size");
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(counts.size());
+  mpi::check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, engine.comm()),
+             "MPI_Allgather");
+  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  mpi::check(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(),
+                            offsets.data(), MPI_DOUBLE, engine.comm()),
+             "MPI_Allgatherv");
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2) {
+    gauge_start_.emplace(static_cast<std::int64_t>(all[k]), all[k + 1]);
+  }
+}
+
+// The volume mean of the gauge points' axial Cauchy stress, and the
+// distance of its halves' centroids (analysis::GaugeSection).
+void RodTensionAnalysis::sample_gauge(const MpmEngine& engine) {
+  const MaterialPoints& pts = engine.points();
+  const std::size_t a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
+  analysis::GaugeSums g;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const auto it = gauge_start_.find(pts.id[i]);
+    if (it == gauge_start_.end()) continue;
+    g.add_stress(pts.state[i].stress.voigt[axis_] * pts.volume(i), pts.volume(i));
+    g.add_member(test_.gauge->half(it->second), pts.x[i][axis_], {pts.x[i][a1], pts.x[i][a2]});
+  }
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, g.sums.data(), static_cast<int>(g.sums.size()), MPI_DOUBLE,
+                           MPI_SUM, engine.comm()),
+             "MPI_Allreduce");
+  const double distance = g.centroid_distance();
+  if (gauge_strain_.empty()) gauge_distance0_ = distance;
+  gauge_strain_.push_back(distance / gauge_distance0_ - 1.0);
+  gauge_stress_.push_back(g.sums[1] / g.sums[2] / units::kBarPerGPa);
 }
 
 std::vector<double> RodTensionAnalysis::measure(const MpmEngine& engine) const {
@@ -90,10 +136,12 @@ void RodTensionAnalysis::sample(const MpmEngine& engine) {
   // times the current length: the measure of dpd_run's tension (its virial
   // over A0 L), so that both rods are judged alike.
   stress_.push_back(m[3] / (area0_ * length) / units::kBarPerGPa);
+  if (test_.gauge) sample_gauge(engine);
 }
 
 void RodTensionAnalysis::report(StageResults& r, const std::string& stage) const {
   test_.report(r, strain_, stress_, stage);
+  if (test_.gauge) test_.report_gauge(r, gauge_strain_, gauge_stress_, stage);
   r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area0_);
 }
 

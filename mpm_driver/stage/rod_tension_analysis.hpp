@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -37,12 +38,19 @@ class RodTensionAnalysis {
   // over all ranks; the sum of sigma_aa V as the fourth entry.
   [[nodiscard]] std::vector<double> measure(const MpmEngine& engine) const;
 
+  // The gauge's members by id: their starting axial coordinate.
+  void find_gauge(const MpmEngine& engine);
+  void sample_gauge(const MpmEngine& engine);
+
   analysis::TensionTest test_;
   std::uint32_t mask_ = 0;
   std::size_t axis_ = 0;
   std::array<double, 3> spacing_{};
   double length0_ = 0.0, area0_ = 0.0;
   std::vector<double> strain_, stress_;
+  std::unordered_map<std::int64_t, double> gauge_start_;
+  double gauge_distance0_ = 0.0;
+  std::vector<double> gauge_strain_, gauge_stress_;
 };
 
 }  // namespace pbms::mpm

@@ -10,6 +10,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "pbms/analysis/gauge_section.hpp"
 #include "pbms/analysis/tension_curve.hpp"
 #include "pbms/config/param.hpp"
 #include "pbms/config/stage_kind.hpp"
@@ -20,6 +21,7 @@ namespace pbms::analysis {
 struct TensionTest {
   std::optional<double> fit_strain;  // empty: up to the stress maximum
   YieldRule yield;
+  std::optional<GaugeSection> gauge;  // the tension map's `gauge`, if given
 
   // The keys inside a stage's tension map that this analysis owns.
   static std::vector<config::Param> params();
@@ -33,6 +35,15 @@ struct TensionTest {
   // Throws pbms::Error naming the stage with fewer than 3 samples to fit.
   void report(StageResults& r, const std::vector<double>& strain, const std::vector<double>& stress,
               const std::string& stage) const;
+  // The gauge's outputs (gauge_*) from its strain (1) and Cauchy stress
+  // (GPa) samples. The modulus is fitted up to the gauge's
+  // fit_stress_fraction of its largest smoothed stress. The yield point is
+  // the first load drop or, on a curve that levels off without one (a J2
+  // rod without hardening: within a drop's size of its maximum for the
+  // last tenth of its strain range), the largest smoothed stress. Throws
+  // as report.
+  void report_gauge(StageResults& r, const std::vector<double>& strain,
+                    const std::vector<double>& stress, const std::string& stage) const;
 };
 
 }  // namespace pbms::analysis

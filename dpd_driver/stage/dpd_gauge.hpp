@@ -1,0 +1,43 @@
+// The gauge reading of a DPD tension run (analysis::GaugeSection): the
+// Cauchy stress of a section in the rod's middle, from the forces across
+// its material planes, and the section's own strain. The rod's virial
+// measure counts the grips and the starting cross-section; the gauge reads
+// what a continuum material calibrated from the rod should reproduce.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/dpd_engine.hpp"
+#include "pbms/analysis/tension_test.hpp"
+#include "pbms/results.hpp"
+
+namespace pbms::dpd {
+
+class DpdGauge {
+ public:
+  // `all` is the full starting set of particles (every rank holds it before
+  // the engine splits it): their axial coordinates fix the gauge's members.
+  // `plane` is the lattice plane spacing added to lateral extents, as the
+  // rod measure adds it.
+  DpdGauge(const analysis::GaugeSection& gauge, const DpdParticles& all, std::uint32_t specimen,
+           int axis, double plane);
+
+  // Collective: one sample of the gauge's strain and stress, from the
+  // forces of the last step.
+  void sample(const DpdEngine& engine);
+  void report(const analysis::TensionTest& test, StageResults& r, const std::string& stage) const;
+
+ private:
+  analysis::GaugeSection gauge_;
+  std::unordered_map<std::int64_t, double> start_;  // id -> starting axial coordinate
+  std::uint32_t specimen_ = 0;
+  int axis_ = 0;
+  double plane_ = 0.0;
+  double distance0_ = 0.0;
+  std::vector<double> strain_, stress_;
+};
+
+}  // namespace pbms::dpd
