@@ -425,6 +425,10 @@ def plot_runs_together(stages, outdir):
             grid = st.attrs.get("grid_cell_size")
             if st.kind == "mpm_run":
                 name = f"{st.name} (MPM)"
+            elif st.kind == "concurrent":
+                counts = (("DPD", "dpd_particles"), ("MPM", "mpm_points"))
+                parts = "/".join(p for p, key in counts if (st.scalar(key) or 0) > 0)
+                name = f"{st.name} ({parts}, interface {st.attrs.get('interface', '?')})"
             else:
                 name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
             ax.plot(t["strain"], t["stress"], lw=1.0,
@@ -586,6 +590,50 @@ def plot_concurrent(stage, outdir):
     return written
 
 
+def last_positions(path):
+    """The last frame of an H5MD file's positions (N x 3) and its step, or None."""
+    if not os.path.isfile(path):
+        return None
+    with h5py.File(path, "r") as f:
+        pos = f.get("particles/all/position")
+        if pos is None or pos["value"].shape[0] == 0:
+            return None
+        return pos["value"][-1], int(pos["step"][-1])
+
+
+def plot_concurrent_snapshots(stages, outdir):
+    """The last particle frame of every concurrent stage that wrote one, side
+    view along the pulled axis, DPD particles and MPM points in two colours,
+    one panel per stage (seed fig 5.11: the rod all DPD, with and without
+    the interface treatment)."""
+    rows = []
+    for st in stages:
+        if st.kind != "concurrent":
+            continue
+        parts = [(last_positions(os.path.join(outdir, st.name, f"{p}_particles.h5md")), p)
+                 for p in ("dpd", "mpm")]
+        parts = [(frame, p) for frame, p in parts if frame is not None and len(frame[0])]
+        if parts:
+            rows.append((st, parts))
+    if not rows:
+        return []
+    fig, axes = plt.subplots(len(rows), 1, figsize=(9.0, 1.6 + 1.3 * len(rows)), squeeze=False,
+                             sharex=True)
+    colours = {"dpd": "tab:green", "mpm": "tab:blue"}
+    for ax, (st, parts) in zip(axes[:, 0], rows):
+        step = None
+        for (x, s), part in parts:
+            # A side view: every particle projected on the x-z plane.
+            ax.plot(x[:, 0], x[:, 2], ".", ms=0.8, color=colours[part], label=part.upper())
+            step = s
+        ax.set_aspect("equal")
+        ax.set_ylabel(label("z", "Å"))
+        ax.set_title(f"{st.name} ({st.attrs.get('interface', '')}), step {step}", fontsize=9)
+        ax.legend(fontsize=7, markerscale=8, loc="upper right")
+    axes[-1, 0].set_xlabel(label("x", "Å"))
+    return finish(fig, os.path.join(outdir, "concurrent_snapshots.png"))
+
+
 PLOTTERS = {
     "concurrent": plot_concurrent,
     "mpm_run": plot_mpm_run,
@@ -635,6 +683,7 @@ def main(argv):
             written += result
         written += plot_profiles_together(finished, run_dir)
         written += plot_runs_together(finished, run_dir)
+        written += plot_concurrent_snapshots(finished, run_dir)
     if not written:
         print(f"plot.py: nothing to plot in {path} (no finished stage with tables)",
               file=sys.stderr)

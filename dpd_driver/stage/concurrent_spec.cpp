@@ -51,7 +51,8 @@ Param continuum() {
       "continuum",
       {Param::real("youngs_modulus", Dimension::kPressure,
                    "E of the MPM points: the DPD model's E<100> (dpd_elastic "
-                   "youngs_modulus_100)")
+                   "youngs_modulus_100), or for a rod the slope of the same rod all DPD "
+                   "(a thin rod of a pair potential is softer than its bulk crystal)")
            .require()
            .above(0)
            .referable(),
@@ -131,9 +132,11 @@ config::StageKindSpec ConcurrentStage::spec() {
        Param::real("fit_strain", Dimension::kNone, "Upper end of the linear fit for E")
            .def(0.05)
            .above(0)},
-      "A tension test: stress is the force holding the grips (rigid or frozen groups of either "
-      "part) over the body's initial cross-section, strain the change of the grips' separation "
-      "over the body's initial length"));
+      "A tension test between two rigid or frozen groups of either part: stress is the body's "
+      "mean axial stress (DPD conservative virial plus MPM sum of sigma V, over the initial "
+      "cross-section times the current length), strain the change of the grips' separation over "
+      "the body's initial length; the grips' holding force over the initial cross-section is "
+      "reported beside it"));
   s.params.push_back(Param::integer("profile_every", "Steps between displacement profiles; 0: none")
                          .def(0)
                          .at_least(0));
@@ -150,8 +153,9 @@ config::StageKindSpec ConcurrentStage::spec() {
       {"steps_per_second", OutputSpec::Shape::kScalar, "1/s", "Speed of the run"},
       {"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
        "Slope of stress against strain up to tension.fit_strain"},
-      {"max_stress", OutputSpec::Shape::kScalar, "GPa", "Largest grip stress (tension)"},
-      {"tension_curve", OutputSpec::Shape::kTable, "", "Strain and grip stress (tension)"},
+      {"max_stress", OutputSpec::Shape::kScalar, "GPa", "Largest mean axial stress (tension)"},
+      {"tension_curve", OutputSpec::Shape::kTable, "",
+       "Strain, mean axial stress and grip stress (tension)"},
       {"dpd_ledger", OutputSpec::Shape::kTable, "", "DPD kinetic energy and momentum"},
       {"mpm_ledger", OutputSpec::Shape::kTable, "", "MPM kinetic and stored energy and momentum"},
   };
