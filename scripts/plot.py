@@ -431,11 +431,17 @@ def plot_runs_together(stages, outdir):
                 name = f"{st.name} ({parts}, interface {st.attrs.get('interface', '?')})"
             else:
                 name = f"{st.name} (grid h = {grid} Å)" if grid else f"{st.name} (DPD-only)"
-            ax.plot(t["strain"], t["stress"], lw=1.0,
-                    label=f"{name}, E = {st.scalar('youngs_modulus'):.2f} GPa")
+            line, = ax.plot(t["strain"], t["stress"], lw=1.0,
+                            label=f"{name}, E = {st.scalar('youngs_modulus'):.2f} GPa")
+            g = st.tables.get("gauge_curve")
+            if g is not None:
+                # The gauge's Cauchy stress against its own strain, dashed.
+                ax.plot(g["strain"], g["stress"], lw=1.0, ls="--", color=line.get_color(),
+                        label=f"{name} gauge, E = {st.scalar('gauge_youngs_modulus'):.2f} GPa")
         ax.set_xlabel(label("strain", curves[0].tables["tension_curve"].units.get("strain")))
         ax.set_ylabel(label("stress", curves[0].tables["tension_curve"].units.get("stress")))
-        ax.set_title("tension curves")
+        ax.set_title("tension curves (dashed: gauge)" if any(
+            s.tables.get("gauge_curve") is not None for s in curves) else "tension curves")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         written += finish(fig, os.path.join(outdir, "tension_curves.png"))
