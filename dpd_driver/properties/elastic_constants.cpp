@@ -84,41 +84,32 @@ CauchyStress instantaneous_stress(const DpdParticles& particles, const PairResul
   return s;
 }
 
-// Block means of a series; a series shorter than kBlocks is one block.
-std::vector<double> block_means(const std::vector<double>& series) {
-  const std::size_t per = series.size() / kBlocks;
-  if (per == 0) {
-    double sum = 0.0;
-    for (const double x : series) sum += x;
-    return {series.empty() ? 0.0 : sum / static_cast<double>(series.size())};
+// The rotated crystal of elastic_constants at crystal.lattice_constant, with
+// enough cells for the neighbour list at `strain` in every state.
+FccCrystal reference_crystal(const PairStyle& pair, const CrystalSpec& crystal,
+                             const ThermalSettings& thermal, double strain) {
+  const double a = crystal.lattice_constant;
+  const double reach = sampling_neighbour_reach(pair, thermal, a);
+  const int at_least_z = crystal.cells;
+  const int at_least_xy = static_cast<int>(std::ceil(crystal.cells * std::numbers::sqrt2 - 1e-9));
+  const int cells_z = cells_for(a, 1.0 - strain, reach, at_least_z);
+  const int cells_xy = cells_for(a / std::numbers::sqrt2, 1.0 - strain, reach, at_least_xy);
+  if (crystal.cells > 0 && crystal.cells < cells_z) {
+    throw Error("DPD elastic constants: " + std::to_string(crystal.cells) +
+                " cells are too few for a neighbour reach of " + std::to_string(reach) +
+                " Å at strain " + std::to_string(strain) + "; at least " + std::to_string(cells_z) +
+                " (or 0, automatic)");
   }
-  std::vector<double> means(kBlocks, 0.0);
-  // A remainder of fewer than kBlocks samples is dropped, so blocks are equal.
-  for (int b = 0; b < kBlocks; ++b) {
-    for (std::size_t k = 0; k < per; ++k) means[b] += series[b * per + k];
-    means[b] /= static_cast<double>(per);
-  }
-  return means;
+  return rotated_fcc(cells_xy, cells_z, a, crystal.mass);
 }
 
-BlockAverage mean_and_error_of_blocks(const std::vector<double>& blocks) {
-  BlockAverage r;
-  for (const double b : blocks) r.mean += b;
-  r.mean /= static_cast<double>(blocks.size());
-  if (blocks.size() < 2) return r;
-  double variance = 0.0;
-  for (const double b : blocks) variance += (b - r.mean) * (b - r.mean);
-  variance /= static_cast<double>(blocks.size() - 1);
-  r.error = std::sqrt(variance / static_cast<double>(blocks.size()));
-  return r;
-}
-
-// The per-sample stress differences σ(+ε) − σ(−ε) of a ± pair, component c.
-std::vector<double> difference(const std::vector<CauchyStress>& plus,
-                               const std::vector<CauchyStress>& minus, int c) {
-  std::vector<double> d(plus.size());
-  for (std::size_t k = 0; k < plus.size(); ++k) d[k] = plus[k][c] - minus[k][c];
-  return d;
+// The stress samples of `reference` strained by `e`.
+std::vector<CauchyStress> run_strained(PairStyle& pair, const FccCrystal& reference,
+                                       const ThermalSettings& thermal, double lattice_constant,
+                                       const Vec3& e) {
+  FccCrystal strained = reference;
+  apply_strain(strained, e);
+  return sample_stress(pair, std::move(strained), thermal, lattice_constant);
 }
 
 }  // namespace
@@ -152,10 +143,6 @@ void check_property_settings(const CrystalSpec& crystal, const ThermalSettings& 
   }
 }
 
-BlockAverage block_average(const std::vector<double>& series) {
-  return mean_and_error_of_blocks(block_means(series));
-}
-
 std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
                                         const ThermalSettings& thermal, double lattice_constant) {
   DpdParticles& particles = crystal.particles;
@@ -185,77 +172,43 @@ std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
   return samples;
 }
 
-ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
-                                   const ThermalSettings& thermal, double strain) {
-  check_property_settings(crystal, thermal);
+double elastic_strain(const ThermalSettings& thermal, double strain) {
   if (!(strain >= 0.0 && strain <= 0.05)) {
     throw Error("DPD elastic constants: strain must be in [0, 0.05] (0: the default)");
   }
-  if (strain == 0.0) strain = is_static(thermal) ? kStaticStrain : kThermalStrain;
+  if (strain == 0.0) return is_static(thermal) ? kStaticStrain : kThermalStrain;
+  return strain;
+}
+
+std::vector<CauchyStress> strain_state_stress(PairStyle& pair, const CrystalSpec& crystal,
+                                              const ThermalSettings& thermal, StrainState state,
+                                              double strain) {
+  check_property_settings(crystal, thermal);
+  strain = elastic_strain(thermal, strain);
+  const FccCrystal reference = reference_crystal(pair, crystal, thermal, strain);
+  return stress_block_means(
+      run_strained(pair, reference, thermal, crystal.lattice_constant, strain_of(state, strain)));
+}
+
+ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
+                                   const ThermalSettings& thermal, double strain) {
+  check_property_settings(crystal, thermal);
+  strain = elastic_strain(thermal, strain);
+  const FccCrystal reference = reference_crystal(pair, crystal, thermal, strain);
   const double a = crystal.lattice_constant;
-  const double reach = sampling_neighbour_reach(pair, thermal, a);
-  const int at_least_z = crystal.cells;
-  const int at_least_xy = static_cast<int>(std::ceil(crystal.cells * std::numbers::sqrt2 - 1e-9));
-  const int cells_z = cells_for(a, 1.0 - strain, reach, at_least_z);
-  const int cells_xy = cells_for(a / std::numbers::sqrt2, 1.0 - strain, reach, at_least_xy);
-  if (crystal.cells > 0 && crystal.cells < cells_z) {
-    throw Error("DPD elastic constants: " + std::to_string(crystal.cells) +
-                " cells are too few for a neighbour reach of " + std::to_string(reach) +
-                " Å at strain " + std::to_string(strain) + "; at least " + std::to_string(cells_z) +
-                " (or 0, automatic)");
+  // The four states one after the other, each reduced to its block means
+  // as strain_state_stress does, so that a fit sampling them apart gets
+  // these bits.
+  std::array<std::vector<CauchyStress>, 4> blocks;
+  for (std::size_t i = 0; i < kStrainStates.size(); ++i) {
+    blocks[i] = stress_block_means(
+        run_strained(pair, reference, thermal, a, strain_of(kStrainStates[i], strain)));
   }
-  const FccCrystal reference = rotated_fcc(cells_xy, cells_z, a, crystal.mass);
-
-  auto run = [&](const Vec3& e) {
-    FccCrystal strained = reference;
-    apply_strain(strained, e);
-    return sample_stress(pair, std::move(strained), thermal, a);
-  };
-  const std::vector<CauchyStress> tetragonal_plus = run({0.0, 0.0, strain});
-  const std::vector<CauchyStress> tetragonal_minus = run({0.0, 0.0, -strain});
-  const std::vector<CauchyStress> shear_plus = run({strain, -strain, 0.0});
-  const std::vector<CauchyStress> shear_minus = run({-strain, strain, 0.0});
-
-  // Per-sample estimates, then blocks: errors of derived quantities then
-  // carry the covariances of the constants they combine.
-  const double over = 1.0 / (2.0 * strain);
-  const std::vector<double> dxx = difference(tetragonal_plus, tetragonal_minus, 0);
-  const std::vector<double> dyy = difference(tetragonal_plus, tetragonal_minus, 1);
-  const std::vector<double> dzz = difference(tetragonal_plus, tetragonal_minus, 2);
-  const std::vector<double> sxx = difference(shear_plus, shear_minus, 0);
-  const std::vector<double> syy = difference(shear_plus, shear_minus, 1);
-  std::vector<double> c11(dzz.size()), c12(dzz.size()), c44(sxx.size()), p(dzz.size());
-  for (std::size_t k = 0; k < dzz.size(); ++k) {
-    c11[k] = dzz[k] * over;
-    c12[k] = 0.5 * (dxx[k] + dyy[k]) * over;
-    c44[k] = 0.25 * (sxx[k] - syy[k]) * over;
-    p[k] = 0.5 * (pressure_of(tetragonal_plus[k]) + pressure_of(tetragonal_minus[k]));
+  ElasticConstants result = elastic_constants_from_states(blocks, strain);
+  if (is_static(thermal)) {
+    result.pressure =
+        pressure_of(run_strained(pair, reference, thermal, a, {0.0, 0.0, 0.0}).front());
   }
-  const std::vector<double> c11_blocks = block_means(c11);
-  const std::vector<double> c12_blocks = block_means(c12);
-  std::vector<double> youngs(c11_blocks.size()), bulk(c11_blocks.size());
-  for (std::size_t b = 0; b < c11_blocks.size(); ++b) {
-    const ElasticConstants block{c11_blocks[b], c12_blocks[b]};
-    youngs[b] = block.youngs_100();
-    bulk[b] = block.bulk_modulus();
-  }
-
-  ElasticConstants result;
-  const BlockAverage c11_estimate = mean_and_error_of_blocks(c11_blocks);
-  const BlockAverage c12_estimate = mean_and_error_of_blocks(c12_blocks);
-  const BlockAverage c44_estimate = block_average(c44);
-  const BlockAverage pressure = block_average(p);
-  result.c11 = c11_estimate.mean;
-  result.c12 = c12_estimate.mean;
-  result.c44 = c44_estimate.mean;
-  result.c11_error = c11_estimate.error;
-  result.c12_error = c12_estimate.error;
-  result.c44_error = c44_estimate.error;
-  result.youngs_100_error = mean_and_error_of_blocks(youngs).error;
-  result.bulk_modulus_error = mean_and_error_of_blocks(bulk).error;
-  result.pressure = pressure.mean;
-  result.pressure_error = pressure.error;
-  if (is_static(thermal)) result.pressure = pressure_of(run({0.0, 0.0, 0.0}).front());
   return result;
 }
 

@@ -24,9 +24,10 @@
 // synchronisation), and the difference σ(+ε) − σ(−ε) carries little of the
 // thermal noise of either: for Morse copper at 298 K the error of C11 is
 // 0.05 GPa where independent runs of the same length would give ~0.6. The
-// error is the block standard error of the per-step difference. These are isothermal constants; C11
-// and C12 at constant entropy are larger by T (∂P/∂T)_V² / c_V (C44 is the same), ~0.3 GPa for the
-// copper mesoparticle at 298 K.
+// error is the standard error of the difference taken block by block (the
+// two runs' block means, strain_states.hpp). These are isothermal constants;
+// C11 and C12 at constant entropy are larger by T (∂P/∂T)_V² / c_V (C44 is
+// the same), ~0.3 GPa for the copper mesoparticle at 298 K.
 #pragma once
 
 #include <array>
@@ -35,6 +36,7 @@
 
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/pair_style.hpp"
+#include "properties/strain_states.hpp"
 
 namespace pbms::dpd {
 
@@ -80,25 +82,6 @@ struct ThermalSettings {
   std::uint64_t seed = 1;
 };
 
-// GPa. Errors are one standard error from block averages (kBlocks blocks of
-// the sampling steps), 0 when static.
-struct ElasticConstants {
-  double c11 = 0.0, c12 = 0.0, c44 = 0.0;
-  double c11_error = 0.0, c12_error = 0.0, c44_error = 0.0;
-  // Of the derived moduli, block by block, so that the correlation of C11
-  // and C12 (the same runs) is accounted for.
-  double youngs_100_error = 0.0, bulk_modulus_error = 0.0;
-  // Of the unstrained state. Static: exact. At temperature: the mean of the
-  // two tetragonal states, high by O(ε²) (~0.001 GPa at the default strain);
-  // the cubic crystal of isotherm.hpp reads ~0.002 GPa lower (finite size).
-  double pressure = 0.0, pressure_error = 0.0;
-
-  // E⟨100⟩ = (C11 − C12)(C11 + 2 C12)/(C11 + C12).
-  [[nodiscard]] double youngs_100() const { return (c11 - c12) * (c11 + 2.0 * c12) / (c11 + c12); }
-  // (C11 + 2 C12)/3.
-  [[nodiscard]] double bulk_modulus() const { return (c11 + 2.0 * c12) / 3.0; }
-};
-
 // Central differences truncate at O(ε²), and at temperature faster (pairs
 // crossing the cutoff, where Morse forces jump): for Morse copper at 298 K,
 // C44 is 0.7 GPa low at ε = 0.01, 0.06 at 5e-3 and within its 0.02 GPa
@@ -107,9 +90,6 @@ struct ElasticConstants {
 // stresses have no noise, and only round-off (~1e-12 relative) below.
 inline constexpr double kStaticStrain = 1.0e-4;
 inline constexpr double kThermalStrain = 2.0e-3;
-// Blocks of the sampling steps behind every error estimate: few, so that
-// each is long against the correlation time (see ThermalSettings).
-inline constexpr int kBlocks = 5;
 // Sampling steps the dpd_elastic stage takes by default. The C44 stress
 // difference keeps correlations over several ps: with 2,000 steps (blocks
 // of 4 ps) the reported C44 error was half the scatter over 10 seeds
@@ -130,15 +110,22 @@ inline constexpr int kElasticSamplingSteps = 8000;
 ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
                                    const ThermalSettings& thermal, double strain = 0.0);
 
+// One of the four strained states of elastic_constants on its own: the block
+// means of its sampled stress (stress_block_means, strain_states.hpp), for
+// elastic_constants_from_states. The same crystal, run and seed as inside
+// elastic_constants, so the four states sampled apart (by different rank
+// groups of a fit) combine to the same bits as one elastic_constants call.
+// Throws as elastic_constants.
+std::vector<CauchyStress> strain_state_stress(PairStyle& pair, const CrystalSpec& crystal,
+                                              const ThermalSettings& thermal, StrainState state,
+                                              double strain = 0.0);
+
+// The strain a call of the two above uses: `strain`, or for 0 kStaticStrain
+// at temperature 0 and kThermalStrain above. Throws pbms::Error for a
+// strain outside [0, 0.05].
+double elastic_strain(const ThermalSettings& thermal, double strain);
+
 // ---- building blocks, shared with isotherm.cpp -------------------------------
-
-// Cauchy stress, GPa, positive in tension: xx, yy, zz, xy, xz, yz.
-using CauchyStress = std::array<double, 6>;
-
-// −trace/3, GPa.
-inline double pressure_of(const CauchyStress& s) {
-  return -(s[0] + s[1] + s[2]) / 3.0;
-}
 
 // The DPD cutoff (Å) of a crystal of this lattice constant (Å).
 double sampling_dpd_cutoff(const ThermalSettings& thermal, double lattice_constant);
@@ -159,13 +146,5 @@ std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
 
 // Throws pbms::Error, naming the offending field, for invalid settings.
 void check_property_settings(const CrystalSpec& crystal, const ThermalSettings& thermal);
-
-// Mean and standard error of a series from kBlocks block means (the error
-// is 0 for fewer than kBlocks samples, the static case).
-struct BlockAverage {
-  double mean = 0.0;
-  double error = 0.0;
-};
-BlockAverage block_average(const std::vector<double>& series);
 
 }  // namespace pbms::dpd

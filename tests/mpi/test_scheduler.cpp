@@ -11,9 +11,11 @@
 #include <map>
 
 #include "driver_catalog.hpp"
+#include "fit/dpd_judge.hpp"
 #include "pbms/config/workflow.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
 #include "scheduler.hpp"
 
 namespace {
@@ -30,6 +32,7 @@ const std::string kDpd = "dpd_driver";
 
 Scheduler* g_scheduler = nullptr;
 pbms::config::Workflow* g_workflow = nullptr;
+const std::vector<pbms::config::DriverDescription>* g_drivers = nullptr;
 
 // Stage `name` of the config with its material's Morse parameters changed.
 RunStage request(const std::string& name, const std::map<std::string, double>& potential = {}) {
@@ -139,6 +142,64 @@ TEST(Scheduler, AnswersDoNotDependOnTheGroups) {
   for (const auto id : grouped) EXPECT_EQ(column(a.at(id), "pressure"), reference);
 }
 
+// The fit's judge with elastic targets at 298 K: the lattice constant comes
+// from its 0 GPa isotherm request, the four strained states are requests of
+// their own, and the constants they combine to are the dpd_elastic stage's
+// (zero_pressure: true, the same settings and seed) bit for bit, judged on
+// two groups or on one.
+TEST(Scheduler, JudgeSplitsTheElasticConstantsOverGroups) {
+  using pbms::units::to_metal;
+  g_scheduler->regroup(kDpd, 2);
+  const RequestId plain = g_scheduler->submit(kDpd, request("elastic"));
+  const auto stage = answers({plain});
+  const auto& done = std::get<StageDone>(stage.at(plain)).results;
+  const auto metal = [&](const std::string& key) {
+    for (const auto& r : done.scalars) {
+      if (r.key == key) return to_metal(r.value, r.unit);
+    }
+    throw pbms::Error("no scalar " + key);
+  };
+
+  pbms::coupler::fit::FitSettings settings;
+  settings.material = "cu_cg";
+  settings.judge = {298.0, 0, 50, 100, 1.0e4, 0.01};
+  settings.isotherm = pbms::coupler::fit::IsothermTarget{{1.0e4, 0.0}, {1.0, 1.0}, {false, false}};
+  settings.elastic = pbms::coupler::fit::ElasticTarget{1.0, 1.0, 1.0};
+  pbms::config::StageConfig fit{"judge", "fit_dpd_potential", "coupler", {kDpd}, {}, 0};
+  pbms::coupler::CouplerStageContext ctx(
+      *g_scheduler, fit, g_workflow->materials, *g_drivers,
+      std::filesystem::temp_directory_path() / "pbms_scheduler_test", g_workflow->seed, false);
+  pbms::coupler::fit::DpdJudge judge(ctx, settings);
+  const YAML::Node potential = g_workflow->materials["cu_cg"]["potential"];
+  g_scheduler->regroup(kDpd, 1);
+  ASSERT_EQ(g_scheduler->groups(kDpd), 2);
+  const auto two = judge.judge(potential, 298.0);
+  g_scheduler->regroup(kDpd, 2);
+  const auto one = judge.judge(potential, 298.0);
+  ASSERT_TRUE(two.ok) << two.reason;
+  ASSERT_TRUE(one.ok) << one.reason;
+  EXPECT_EQ(*two.c11, metal("c11"));
+  EXPECT_EQ(*two.c12, metal("c12"));
+  EXPECT_EQ(*two.c44, metal("c44"));
+  EXPECT_EQ(*two.c11_error, metal("c11_error"));
+  EXPECT_EQ(*two.c12_error, metal("c12_error"));
+  EXPECT_EQ(*two.c44_error, metal("c44_error"));
+  EXPECT_GT(*two.c11_error, 0.0);
+  EXPECT_EQ(*one.c11, *two.c11);
+  EXPECT_EQ(*one.c12, *two.c12);
+  EXPECT_EQ(*one.c44, *two.c44);
+  EXPECT_EQ(*one.c44_error, *two.c44_error);
+  // The rows come back in the targets' order, the 0 GPa one included.
+  ASSERT_EQ(two.volume_per_atom.size(), 2u);
+  EXPECT_EQ(one.volume_per_atom, two.volume_per_atom);
+  EXPECT_EQ(one.pressure_error, two.pressure_error);
+  EXPECT_LT(two.volume_per_atom[0], two.volume_per_atom[1]);
+  // The 0 GPa row is the stage's zero-pressure crystal: 8 atoms per mesoparticle.
+  const double a = metal("lattice_constant");
+  EXPECT_NEAR(two.volume_per_atom[1], a * a * a / 32.0, 1e-12 * two.volume_per_atom[1]);
+  EXPECT_EQ(g_scheduler->unfinished(), 0u);
+}
+
 TEST(Scheduler, RegroupRefusesWhileBusy) {
   g_scheduler->regroup(kDpd, 1);
   const RequestId id = g_scheduler->submit(kDpd, request("static"));
@@ -165,6 +226,7 @@ int main(int argc, char** argv) {
   if (!loaded.workflow) return 1;
   g_scheduler = &scheduler;
   g_workflow = &*loaded.workflow;
+  g_drivers = &drivers;
   int rc = 1;
   try {
     rc = RUN_ALL_TESTS();

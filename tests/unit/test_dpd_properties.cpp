@@ -10,6 +10,7 @@
 // 3 cells against 5.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -267,6 +268,83 @@ TEST(DpdProperties, MorseAt298KIsSlightlySofterThanStatic) {
   // The rotated crystal of the elastic runs agrees that this is zero
   // pressure (O(ε²) and finite-size differences are ~0.001 GPa).
   EXPECT_NEAR(c.pressure, 0.0, 4.0 * c.pressure_error + 0.003);
+}
+
+// The combination of the four states, on stresses made here from a known
+// cubic stiffness (Hooke's law in the rotated axes: the tetragonal strain
+// ±ε along z gives σzz = ±C11 ε, σx'x' = σy'y' = ±C12 ε; the shear
+// (±ε, ∓ε, 0) gives σx'x' = −σy'y' = ±2 C44 ε) on a common pressure, with a
+// different stiffness in each block: the constants are the block means,
+// their errors the standard errors of the block values.
+TEST(DpdProperties, StrainStatesCombineToTheStiffnessThatMadeThem) {
+  const double strain = 2e-3, p0 = 0.3;
+  const std::vector<std::array<double, 3>> stiffness{{170.0, 120.0, 75.0},
+                                                     {171.0, 119.0, 76.5},
+                                                     {169.0, 121.5, 74.0},
+                                                     {170.5, 120.5, 75.5},
+                                                     {169.5, 119.0, 74.0}};
+  std::array<std::vector<CauchyStress>, 4> states;
+  for (const auto& [c11, c12, c44] : stiffness) {
+    for (const StrainState state : kStrainStates) {
+      const std::array<double, 3> e = strain_of(state, strain);
+      CauchyStress s{-p0, -p0, -p0, 0.0, 0.0, 0.0};
+      if (e[2] != 0.0) {
+        s[0] += c12 * e[2];
+        s[1] += c12 * e[2];
+        s[2] += c11 * e[2];
+      } else {
+        s[0] += 2.0 * c44 * e[0];
+        s[1] += 2.0 * c44 * e[1];
+      }
+      states[static_cast<std::size_t>(state)].push_back(s);
+    }
+  }
+  const ElasticConstants c = elastic_constants_from_states(states, strain);
+  // Mean and standard error of the five block values, computed here.
+  const auto mean_error = [&](int k) {
+    double mean = 0.0, variance = 0.0;
+    for (const auto& b : stiffness) mean += b[k] / 5.0;
+    for (const auto& b : stiffness) variance += (b[k] - mean) * (b[k] - mean) / 4.0;
+    return std::pair{mean, std::sqrt(variance / 5.0)};
+  };
+  EXPECT_NEAR(c.c11, mean_error(0).first, 1e-9);
+  EXPECT_NEAR(c.c12, mean_error(1).first, 1e-9);
+  EXPECT_NEAR(c.c44, mean_error(2).first, 1e-9);
+  EXPECT_NEAR(c.c11_error, mean_error(0).second, 1e-9);
+  EXPECT_NEAR(c.c12_error, mean_error(1).second, 1e-9);
+  EXPECT_NEAR(c.c44_error, mean_error(2).second, 1e-9);
+  EXPECT_NEAR(c.pressure, p0, 1e-12);
+  for (const StrainState state : kStrainStates) {
+    EXPECT_EQ(strain_state_from_name(strain_state_name(state)), state);
+  }
+  EXPECT_THROW(strain_state_from_name("shear"), pbms::Error);
+  states[3].pop_back();
+  EXPECT_THROW(elastic_constants_from_states(states, strain), pbms::Error);
+}
+
+// The states sampled one by one, each with a pair style of its own (as the
+// fit's requests on different rank groups do), combine to the bits of one
+// elastic_constants call.
+TEST(DpdProperties, StrainStatesSampledApartGiveTheSameConstants) {
+  ThermalSettings hot = room_temperature();
+  hot.equilibration_steps = 50;
+  hot.sampling_steps = 100;
+  const CrystalSpec crystal{kLattice, 0, kMass};
+  const ElasticConstants whole = elastic_constants(*cu_cg_morse(), crystal, hot);
+  std::array<std::vector<CauchyStress>, 4> states;
+  for (const StrainState state : kStrainStates) {
+    states[static_cast<std::size_t>(state)] =
+        strain_state_stress(*cu_cg_morse(), crystal, hot, state);
+    EXPECT_EQ(states[static_cast<std::size_t>(state)].size(), static_cast<std::size_t>(kBlocks));
+  }
+  const ElasticConstants apart = elastic_constants_from_states(states, elastic_strain(hot, 0.0));
+  EXPECT_EQ(apart.c11, whole.c11);
+  EXPECT_EQ(apart.c12, whole.c12);
+  EXPECT_EQ(apart.c44, whole.c44);
+  EXPECT_EQ(apart.c11_error, whole.c11_error);
+  EXPECT_EQ(apart.c44_error, whole.c44_error);
+  EXPECT_EQ(apart.youngs_100_error, whole.youngs_100_error);
+  EXPECT_GT(whole.c44_error, 0.0);
 }
 
 TEST(DpdProperties, InvalidSettingsAreRefused) {
