@@ -573,6 +573,7 @@ def plot_concurrent(stage, outdir):
         t = dl["time"]
         total = np.zeros_like(t)
         parts = [(dl, "kinetic_energy", "DPD kinetic"), (dl, "potential_energy", "DPD potential"),
+                 (dl, "interface_pair_energy", "DPD-MPM interface pairs"),
                  (ml, "kinetic_energy", "MPM kinetic"), (ml, "stored_energy", "MPM stored")]
         for table, col, name in parts:
             if col in table.columns and len(table[col]) == len(t):

@@ -116,6 +116,24 @@ bool DpdEngine::list_is_stale() {
   return moved > half_skin * half_skin;
 }
 
+double DpdEngine::pair_energy_without_partners() {
+  // A partner moved far beyond the cutoff drops out of every pair of the
+  // list (its image shifts are fixed vectors), so the same list gives the
+  // particles' own energy. The positions are put back exactly.
+  constexpr double kOutOfReach = 1.0e7;  // Å
+  const std::size_t begin = with_partners_ ? partner_begin_ : particles_.size();
+  const std::vector<Vec3> kept(particles_.x.begin() + static_cast<std::ptrdiff_t>(begin),
+                               particles_.x.end());
+  for (std::size_t i = begin; i < particles_.size(); ++i) particles_.x[i][0] += kOutOfReach;
+  scratch_forces_.swap(particles_.f);
+  particles_.f.assign(particles_.size(), {0.0, 0.0, 0.0});
+  double energy = pair_->compute(particles_, list_, Tally::kEnergyAndVirial).energy;
+  scratch_forces_.swap(particles_.f);
+  std::copy(kept.begin(), kept.end(), particles_.x.begin() + static_cast<std::ptrdiff_t>(begin));
+  allreduce_sum(comm(), &energy, 1);
+  return energy;
+}
+
 std::vector<Vec3> DpdEngine::partner_forces() const {
   const auto begin = particles_.f.begin() + static_cast<std::ptrdiff_t>(partner_begin_);
   return {begin, begin + static_cast<std::ptrdiff_t>(partners_.size())};

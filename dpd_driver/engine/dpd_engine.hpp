@@ -122,6 +122,11 @@ class DpdEngine {
 
   // All-rank sums; with_potential costs one extra pair pass.
   [[nodiscard]] ThermoState thermo(bool with_potential);
+  // All-rank conservative pair energy of the particles among themselves,
+  // eV: thermo's potential without the pairs with partners, so that a
+  // concurrent run's ledger shows the interface's pair energy on its own
+  // line. One extra pair pass; collective.
+  [[nodiscard]] double pair_energy_without_partners();
 
   [[nodiscard]] DpdParticles& particles() { return particles_; }
   [[nodiscard]] const DpdParticles& particles() const { return particles_; }

@@ -288,7 +288,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   const double body_mass =
       coupling::swap_scalar(inter, ctx.comm(), dpd_count * engine.particles().mass_per_type[0]) +
       dpd_count * engine.particles().mass_per_type[0];
-  std::vector<double> opening_t, opening, potential;
+  std::vector<double> opening_t, opening, potential, interface_energy;
   std::array<double, 3> p0{};
   double worst_dp = 0.0;
   auto sample = [&](std::int64_t n) {
@@ -296,8 +296,10 @@ void ConcurrentStage::run(StageContext& ctx) {
     probes.sample(n, v);
     // DPD pairs, and half of each pair with an MPM point (the other half
     // would be the MPM side's; its continuum energy is the stored energy).
-    const ThermoState thermo = engine.thermo(true);  // one extra pair pass a sample
-    potential.push_back(thermo.potential);
+    const ThermoState thermo = engine.thermo(true);            // one extra pair pass a sample
+    const double own = engine.pair_energy_without_partners();  // and one more
+    potential.push_back(own);
+    interface_energy.push_back(thermo.potential - own);
     std::array<double, 3> total{};
     for (std::size_t a = 0; a < 3; ++a) {
       total[a] =
@@ -370,6 +372,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   probes.report(r, "dpd");
   r.add_column("dpd_ledger", "potential_energy", "eV", potential);
+  r.add_column("dpd_ledger", "interface_pair_energy", "eV", interface_energy);
   if (tension) tension->report(r);
   // Bytes the DPD part's ranks sent in the nodal sums and received as
   // partners, per step, summed over its ranks.
