@@ -31,6 +31,8 @@ except ImportError:  # pragma: no cover - the launcher installs python3-h5py
     sys.exit("plot.py: error: h5py is missing; install python3-h5py "
              "(and run this script with /usr/bin/python3)")
 
+from concurrent_xdmf import write_concurrent_xdmf  # noqa: E402
+
 DPI = 120
 BAR_PER_GPA = 1.0e4
 
@@ -691,6 +693,13 @@ def main(argv):
         written += plot_profiles_together(finished, run_dir)
         written += plot_runs_together(finished, run_dir)
         written += plot_concurrent_snapshots(finished, run_dir)
+        for stage in finished:
+            if stage.kind == "concurrent":
+                # Not a plot, but derived from the run's files as the plots are.
+                xdmf = write_concurrent_xdmf(os.path.join(run_dir, stage.name))
+                if xdmf:
+                    print(f"plot.py: {xdmf} opens both parts and the grid "
+                          "(ParaView's XDMF Reader)")
     if not written:
         print(f"plot.py: nothing to plot in {path} (no finished stage with tables)",
               file=sys.stderr)
