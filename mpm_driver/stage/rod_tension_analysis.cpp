@@ -8,6 +8,7 @@
 
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
@@ -66,17 +67,7 @@ void RodTensionAnalysis::find_gauge(const MpmEngine& engine) {
       mine.insert(mine.end(), {static_cast<double>(pts.id[i]), pts.x[i][axis_]});
     }
   }
-  int ranks = 0;
-  mpi::check(MPI_Comm_size(engine.comm(), &ranks), "MPI_Comm_size");
-  const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(counts.size());
-  mpi::check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, engine.comm()),
-             "MPI_Allgather");
-  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<double> all(static_cast<std::size_t>(offsets.back() + counts.back()));
-  mpi::check(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(),
-                            offsets.data(), MPI_DOUBLE, engine.comm()),
-             "MPI_Allgatherv");
+  const std::vector<double> all = mpi::sorted_rows(engine.comm(), mine, 2, mpi::RowsTo::kEveryRank);
   for (std::size_t k = 0; k + 1 < all.size(); k += 2) {
     gauge_start_.emplace(static_cast<std::int64_t>(all[k]), all[k + 1]);
   }
