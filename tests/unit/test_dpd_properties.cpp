@@ -342,6 +342,7 @@ TEST(DpdProperties, StrainStatesSampledApartGiveTheSameConstants) {
   EXPECT_EQ(apart.c12, whole.c12);
   EXPECT_EQ(apart.c44, whole.c44);
   EXPECT_EQ(apart.c11_error, whole.c11_error);
+  EXPECT_EQ(apart.c12_error, whole.c12_error);
   EXPECT_EQ(apart.c44_error, whole.c44_error);
   EXPECT_EQ(apart.youngs_100_error, whole.youngs_100_error);
   EXPECT_GT(whole.c44_error, 0.0);
