@@ -87,6 +87,16 @@ Param materials_schema() {
           .def(0.0)
           .at_least(0)
           .referable());
+  const auto modulus = [](const char* name, const char* doc) {
+    return Param::real(name, Dimension::kPressure, doc).require().referable();
+  };
+  std::vector<Param> cubic_j2_fields = {
+      density,
+      modulus("c11", "Cubic elastic constant C11, cube axes along x, y, z").above(0),
+      modulus("c12", "Cubic elastic constant C12"),
+      modulus("c44", "Cubic elastic constant C44").above(0),
+  };
+  cubic_j2_fields.insert(cubic_j2_fields.end(), j2_fields.end() - 2, j2_fields.end());
   const std::vector<Param> gas_fields = {
       density,
       Param::real("gamma", Dimension::kNone, "Ratio of specific heats").def(1.4).above(1.0),
@@ -107,13 +117,14 @@ Param materials_schema() {
                   "A YAML file holding the `potential` map (what the MD->DPD fit writes); "
                   "give this or `potential`"),
   };
-  Param material = Param::map("material",
-                              {Param::choice("kind",
-                                             {"eam_alloy", "eam_fs", "linear_elastic",
-                                              "j2_plasticity", "ideal_gas", "dpd_mesoparticle"},
-                                             "Interaction model or constitutive model")
-                                   .require()},
-                              "One material");
+  Param material =
+      Param::map("material",
+                 {Param::choice("kind",
+                                {"eam_alloy", "eam_fs", "linear_elastic", "j2_plasticity",
+                                 "cubic_j2_plasticity", "ideal_gas", "dpd_mesoparticle"},
+                                "Interaction model or constitutive model")
+                      .require()},
+                 "One material");
   material.discriminated_by("kind")
       .variant("eam_alloy", eam_fields, "Embedded-atom method, LAMMPS pair_style eam/alloy")
       .variant("eam_fs", eam_fields, "Finnis-Sinclair EAM, LAMMPS pair_style eam/fs")
@@ -121,6 +132,9 @@ Param materials_schema() {
                "MPM: isotropic linear elasticity, small strain with a Jaumann rate")
       .variant("j2_plasticity", j2_fields,
                "MPM: von Mises plasticity with linear isotropic hardening (radial return)")
+      .variant("cubic_j2_plasticity", cubic_j2_fields,
+               "MPM: von Mises plasticity on a cubic elastic crystal whose cube axes are x, y, "
+               "z (cutting-plane return)")
       .variant("ideal_gas", gas_fields,
                "MPM: ideal gas P = (gamma - 1) rho e, e from the work of compression")
       .variant("dpd_mesoparticle", dpd_fields,

@@ -18,7 +18,7 @@ const ParameterRange kHardeningModulusRange = ParameterRange::non_negative();
 
 J2Plasticity::J2Plasticity(double youngs_modulus, double poisson_ratio, double yield_stress,
                            double hardening_modulus)
-    : yield_stress_(yield_stress), hardening_modulus_(hardening_modulus) {
+    : hardening_{yield_stress, hardening_modulus} {
   check_parameter(kStyle, "youngs_modulus", youngs_modulus, kYoungsModulusRange);
   check_parameter(kStyle, "poisson_ratio", poisson_ratio, kPoissonRatioRange);
   check_parameter(kStyle, "yield_stress", yield_stress, kYieldStressRange);
@@ -55,7 +55,7 @@ void J2Plasticity::update(const Mat3& velocity_gradient, double dt,
   // With linear hardening the return along the trial deviator is closed form:
   // q = q_trial - 3 mu dgamma must equal flow_stress(eps_p + dgamma).
   const double mu = elasticity_.shear_modulus;
-  const double dgamma = overstress / (3.0 * mu + hardening_modulus_);
+  const double dgamma = overstress / (3.0 * mu + hardening_.hardening_modulus);
   const double shrink = 1.0 - 3.0 * mu * dgamma / q_trial;
   const double mean = trial.trace() / 3.0;
   state.stress = SymmetricTensor::isotropic(mean) + shrink * s_trial;
@@ -71,8 +71,7 @@ double J2Plasticity::stored_energy_density(const MaterialPointState& state) cons
 }
 
 double J2Plasticity::dissipated_energy_density(const MaterialPointState& state) const {
-  const double ep = state.plastic_strain;
-  return yield_stress_ * ep + 0.5 * hardening_modulus_ * ep * ep;
+  return hardening_.dissipated_energy_density(state.plastic_strain);
 }
 
 }  // namespace pbms::mpm

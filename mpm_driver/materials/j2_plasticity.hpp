@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "isotropic_elasticity.hpp"
+#include "linear_hardening.hpp"
 #include "material.hpp"
 #include "material_parameters.hpp"
 
@@ -34,16 +35,14 @@ class J2Plasticity final : public Material {
   // Plastic work, integral of flow_stress d(eps_p), per unit volume.
   [[nodiscard]] double dissipated_energy_density(const MaterialPointState& state) const override;
 
-  // Current yield stress at a given equivalent plastic strain.
   [[nodiscard]] double flow_stress(double plastic_strain) const {
-    return yield_stress_ + hardening_modulus_ * plastic_strain;
+    return hardening_.flow_stress(plastic_strain);
   }
   [[nodiscard]] const IsotropicElasticity& elasticity() const { return elasticity_; }
 
  private:
   IsotropicElasticity elasticity_;
-  double yield_stress_;
-  double hardening_modulus_;
+  LinearHardening hardening_;
 };
 
 }  // namespace pbms::mpm

@@ -3,6 +3,7 @@
 #include <map>
 #include <utility>
 
+#include "cubic_j2_plasticity.hpp"
 #include "ideal_gas.hpp"
 #include "j2_plasticity.hpp"
 #include "linear_elastic.hpp"
@@ -20,6 +21,7 @@ std::map<std::string, MaterialFactory, std::less<>>& factories() {
       {std::string(LinearElastic::kStyle), &LinearElastic::create},
       {std::string(J2Plasticity::kStyle), &J2Plasticity::create},
       {std::string(IdealGas::kStyle), &IdealGas::create},
+      {std::string(CubicJ2Plasticity::kStyle), &CubicJ2Plasticity::create},
   };
   return table;
 }

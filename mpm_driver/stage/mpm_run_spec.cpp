@@ -27,7 +27,7 @@ config::StageKindSpec MpmRunStage::spec() {
   s.doc =
       "Explicit material point method run (update-stress-last or -first, FLIP/PIC, plain or "
       "DDMP gradients) of bodies filled with points on a background grid";
-  s.material_kinds = {"linear_elastic", "j2_plasticity", "ideal_gas"};
+  s.material_kinds = {"linear_elastic", "j2_plasticity", "cubic_j2_plasticity", "ideal_gas"};
 
   const Param grid = Param::map(
       "grid",

@@ -9,12 +9,11 @@ source "$(dirname "$0")/lib.sh"
 #  - its C11, C12, C44 at 298 K (dpd_elastic, 8,000 sampled steps) within
 #    10 % of MD's, and C12 - C44 larger than 3 sigma with MD's sign;
 #  - the MPM rod's gauge yield within 5 % of the DPD rod's. Its gauge
-#    modulus is held within 20 %: with the fitted Sutton-Chen model it reads
-#    about 16 % above DPD's (+1 % with the Morse model of calibration.yaml).
-#    An isotropic J2 material with nu = C12/(C11 + C12) = 0.42 takes the
-#    rigid grips' lateral hold differently from the cubic crystal, whose
-#    C44 (70 GPa) is over twice the isotropic E/(2(1 + nu)); the gauge lies
-#    within one rod width of the grips (docs/hierarchy.md);
+#    modulus is held within 10 %: the MPM material is the DPD crystal's
+#    cubic C11, C12, C44 at 298 K, and its rod reads about 7 % below the DPD
+#    rod, whose thin, heating, fast-pulled gauge is not the linear crystal
+#    (it reads 1.28 E<100>, the MPM rod 1.19 E<100>; docs/hierarchy.md). An
+#    isotropic E, nu material read 16 % above;
 #  - a second run under a new name whose fit section differs (another
 #    optimiser budget) runs no LAMMPS: both MD stages come from the cache.
 start=$(date +%s)
@@ -52,7 +51,7 @@ sig = (dpd["c12_error"]["value"] ** 2 + dpd["c44_error"]["value"] ** 2) ** 0.5
 c.check(dd * dm > 0 and abs(dd) > 3 * sig, f"C12 - C44: DPD {dd:.1f} +- {sig:.1f} GPa, MD {dm:.1f} GPa (same sign, > 3 sigma)")
 t, m = s["tension"]["results"], s["mpm_tension"]["results"]
 a, b = t["gauge_youngs_modulus"]["value"], m["gauge_youngs_modulus"]["value"]
-c.check(abs(b / a - 1) <= 0.20, f"gauge E: MPM {b:.2f} vs DPD {a:.2f} GPa ({100 * (b / a - 1):+.1f} %, tolerance 20 %; issue 18 asks 5 %)")
+c.check(abs(b / a - 1) <= 0.10, f"gauge E: MPM {b:.2f} vs DPD {a:.2f} GPa ({100 * (b / a - 1):+.1f} %, tolerance 10 %; issue 18 asks 5 %)")
 a, b = t["gauge_yield_stress"]["value"], m["gauge_max_stress"]["value"]
 c.check(abs(b / a - 1) <= 0.05, f"gauge yield: MPM plateau {b:.2f} vs DPD first load drop {a:.2f} GPa ({100 * (b / a - 1):+.1f} %, tolerance 5 %)")
 fit = s["fit"]["results"]

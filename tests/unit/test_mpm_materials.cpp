@@ -4,10 +4,12 @@
 // (GCC bug 105593, fixed in 13); nothing of ours is uninitialised.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #pragma GCC diagnostic pop
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -15,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "materials/cubic_j2_plasticity.hpp"
 #include "materials/ideal_gas.hpp"
 #include "materials/j2_plasticity.hpp"
 #include "materials/linear_elastic.hpp"
@@ -454,13 +457,15 @@ TEST(MaterialRegistry, CreatesEveryBuiltInStyle) {
   const auto gas = MaterialRegistry::create("ideal_gas", {});
   EXPECT_EQ(dynamic_cast<const IdealGas&>(*gas).gamma(), 1.4);
   const auto styles = MaterialRegistry::styles();
-  EXPECT_EQ(styles, (std::vector<std::string>{"ideal_gas", "j2_plasticity", "linear_elastic"}));
+  EXPECT_EQ(styles, (std::vector<std::string>{"cubic_j2_plasticity", "ideal_gas", "j2_plasticity",
+                                              "linear_elastic"}));
 }
 
 TEST(MaterialRegistry, ErrorsNameTheProblemAndWhatIsAccepted) {
   const std::string unknown = error_of("neo_hookean", {});
   EXPECT_NE(unknown.find("'neo_hookean'"), std::string::npos) << unknown;
-  EXPECT_NE(unknown.find("ideal_gas, j2_plasticity, linear_elastic"), std::string::npos);
+  EXPECT_NE(unknown.find("cubic_j2_plasticity, ideal_gas, j2_plasticity, linear_elastic"),
+            std::string::npos);
 
   const std::string missing = error_of("linear_elastic", {{"poisson_ratio", 0.3}});
   EXPECT_NE(missing.find("missing parameter 'youngs_modulus'"), std::string::npos) << missing;
@@ -497,4 +502,155 @@ TEST(MaterialRegistry, AcceptsNewStylesOnce) {
   });
   EXPECT_EQ(MaterialRegistry::create("test_stiff_gas", {{"gamma", 3.0}})->style(), "ideal_gas");
   EXPECT_THROW(MaterialRegistry::add("linear_elastic", LinearElastic::create), pbms::Error);
+}
+
+// --- Cubic J2 plasticity ---------------------------------------------------
+
+namespace {
+
+// Copper-like: the Sutton-Chen mesoparticle crystal's constants at 298 K in
+// GPa (docs/hierarchy.md), anisotropy 2 C44 / (C11 - C12) = 2.9.
+const CubicElasticity kCopperLike{167.1, 119.0, 70.3};
+
+Mat3 random_gradient(std::mt19937& rng, double size) {
+  std::uniform_real_distribution<double> u(-size, size);
+  Mat3 l;
+  for (int i = 0; i < 9; ++i) l(i / 3, i % 3) = u(rng);
+  return l;
+}
+
+}  // namespace
+
+// With C44 = (C11 - C12) / 2 the crystal is isotropic and C : n is parallel
+// to n: the cutting plane must stop after its first pass at the closed-form
+// radial return, for any path (spin included).
+TEST(CubicJ2Plasticity, IsotropicStiffnessReproducesTheRadialReturn) {
+  const double e = 1.2e6, nu = 0.3, sy = 2000.0, h = 3e4;
+  const IsotropicElasticity iso = IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(e, nu);
+  const CubicJ2Plasticity cubic(
+      {iso.lambda + 2.0 * iso.shear_modulus, iso.lambda, iso.shear_modulus}, sy, h);
+  const J2Plasticity j2(e, nu, sy, h);
+  MaterialPointState a = j2.initial_state(8.9, 0.0);
+  MaterialPointState b = a;
+  std::mt19937 rng(7);
+  for (int step = 0; step < 400; ++step) {
+    const Mat3 l = random_gradient(rng, 4e-4);
+    j2.update(l, 1.0, a);
+    cubic.update(l, 1.0, b);
+  }
+  ASSERT_GT(a.plastic_strain, 0.01);
+  EXPECT_LT(relative_error(b.plastic_strain, a.plastic_strain), 1e-11);
+  for (int c = 0; c < 6; ++c) EXPECT_NEAR(b.stress[c], a.stress[c], 1e-10 * sy) << c;
+}
+
+// Pulled along a cube axis with free sides, the crystal answers with
+// E<100> = (C11 - C12)(C11 + 2 C12)/(C11 + C12) and contracts sideways by
+// nu<100> = C12 / (C11 + C12) (e.g. Nye, Physical Properties of Crystals).
+TEST(CubicJ2Plasticity, UniaxialStressAlongACubeAxisHasTheTextbookModulus) {
+  const double c11 = kCopperLike.c11, c12 = kCopperLike.c12;
+  const double e100 = (c11 - c12) * (c11 + 2 * c12) / (c11 + c12);
+  const CubicJ2Plasticity m(kCopperLike, 1e3, 0.0);
+  MaterialPointState state = m.initial_state(8.9, 0.0);
+  const double de = 1e-5;
+  for (int step = 1; step <= 20; ++step) {
+    const MaterialPointState next = uniaxial_stress_step(m, state, de, c12 / (c11 + c12));
+    EXPECT_LT(relative_error(next.stress[0], e100 * step * de), 1e-9);
+    EXPECT_LT(std::abs(next.stress[1]), 1e-12 * e100);
+    state = next;
+  }
+}
+
+// Pure shear in the cube planes: C : n stays along n (C44), so the return is
+// exact in one pass and the shear stress levels off at sigma_y / sqrt(3).
+TEST(CubicJ2Plasticity, PureShearLevelsOffAtTheShearYieldStress) {
+  const double sy = 2.0;
+  const CubicJ2Plasticity m(kCopperLike, sy, 0.0);
+  MaterialPointState state = m.initial_state(8.9, 0.0);
+  Mat3 l = Mat3::Zero();
+  l(0, 1) = l(1, 0) = 1e-4;  // eps_xy grows by 1e-4 a step
+  for (int step = 1; step <= 300; ++step) {
+    m.update(l, 1.0, state);
+    const double elastic = 2.0 * kCopperLike.c44 * 1e-4 * step;
+    EXPECT_NEAR(state.stress[5], std::min(elastic, sy / std::sqrt(3.0)), 1e-12 * sy) << step;
+  }
+}
+
+// From random yielded states under random increments the return ends on the
+// yield surface, and keeps the elastic trial pressure (isochoric flow).
+TEST(CubicJ2Plasticity, ReturnEndsOnTheSurfaceWithTheTrialPressure) {
+  const double sy = 1.5, h = 4.0;
+  const CubicJ2Plasticity m(kCopperLike, sy, h);
+  const CubicJ2Plasticity elastic_only(kCopperLike, 1e30, 0.0);
+  std::mt19937 rng(11);
+  MaterialPointState state = m.initial_state(8.9, 0.0);
+  int yielded = 0;
+  for (int step = 0; step < 300; ++step) {
+    const Mat3 l = random_gradient(rng, 6e-3);
+    MaterialPointState trial = state;
+    elastic_only.update(l, 1.0, trial);
+    const double ep = state.plastic_strain;
+    m.update(l, 1.0, state);
+    EXPECT_NEAR(state.stress.trace(), trial.stress.trace(),
+                1e-12 * std::abs(trial.stress.trace()) + 1e-14);
+    if (state.plastic_strain > ep) {
+      ++yielded;
+      EXPECT_LT(relative_error(von_mises_stress(state.stress), m.flow_stress(state.plastic_strain)),
+                1e-11);
+    }
+  }
+  EXPECT_GT(yielded, 100);
+}
+
+TEST(CubicJ2Plasticity, WorkDoneEqualsStoredPlusDissipated) {
+  const CubicJ2Plasticity m(kCopperLike, 1.0, 5.0);
+  MaterialPointState state = m.initial_state(8.9, 0.0);
+  double work = 0.0;
+  const double de = 1e-5;  // (C11 - C12) eps_xx reaches sigma_y near step 2100
+  for (int step = 0; step < 6000; ++step) {
+    const double rate = step < 4000 ? de : -de;
+    const double before = state.stress[0];
+    m.update(diagonal_rate(rate, 0, 0), 1.0, state);
+    work += 0.5 * (before + state.stress[0]) * rate;
+  }
+  ASSERT_GT(state.plastic_strain, 0.0);
+  const double balance = m.stored_energy_density(state) + m.dissipated_energy_density(state);
+  EXPECT_LT(relative_error(balance, work), 1e-3);
+}
+
+// The time step needs the fastest wave in any direction: the largest
+// eigenvalue of the Christoffel matrix C_ijkl n_j n_l over many directions
+// must not exceed the modulus wave_speed uses, and must reach it.
+TEST(CubicJ2Plasticity, WaveSpeedIsTheFastestLongitudinalWave) {
+  const CubicJ2Plasticity m(kCopperLike, 1.0, 0.0);
+  const double rho = 8.9;
+  const double bound = std::pow(m.wave_speed(m.initial_state(rho, 0.0)), 2) * rho;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  double fastest = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    Eigen::Vector3d n(g(rng), g(rng), g(rng));
+    if (k == 0) n = {1, 1, 1};
+    n.normalize();
+    Mat3 christoffel;
+    for (int i = 0; i < 3; ++i) {
+      for (int kk = 0; kk < 3; ++kk) {
+        // Gamma_ik = C_ijkl n_j n_l, read off the stress of the strain sym(e_k n).
+        Mat3 strain = Mat3::Zero();
+        strain.col(kk) += 0.5 * n;
+        strain.row(kk) += 0.5 * n.transpose();
+        christoffel(i, kk) =
+            (m.elasticity().stress_for(SymmetricTensor::from_matrix(strain)).to_matrix() * n)(i);
+      }
+    }
+    fastest = std::max(fastest, Eigen::SelfAdjointEigenSolver<Mat3>(christoffel).eigenvalues()(2));
+  }
+  EXPECT_LE(fastest, bound * (1 + 1e-12));
+  EXPECT_GT(fastest, bound * (1 - 1e-12));
+}
+
+TEST(CubicJ2Plasticity, RefusesAnUnstableCrystal) {
+  const std::string msg = error_of("cubic_j2_plasticity",
+                                   {{"c11", 100}, {"c12", 120}, {"c44", 50}, {"yield_stress", 1}});
+  EXPECT_NE(msg.find("not a stable cubic crystal"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("c11 > c12"), std::string::npos) << msg;
 }

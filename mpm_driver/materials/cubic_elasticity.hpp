@@ -1,0 +1,59 @@
+// Linear elasticity of a cubic crystal whose cube axes lie along x, y and z:
+// three constants (C11, C12, C44) instead of isotropy's two. The copper
+// mesoparticle crystal is strongly anisotropic (2 C44 / (C11 - C12) near 3),
+// so an isotropic (E, nu) fitted to its <100> pull has the right static
+// response along x but a longitudinal modulus lambda + 2 mu and a shear
+// modulus far from the crystal's C11 and C44; whenever waves or the grips'
+// lateral hold matter, the two bodies then answer differently.
+#pragma once
+
+#include <algorithm>
+
+#include "symmetric_tensor.hpp"
+
+namespace pbms::mpm {
+
+struct CubicElasticity {
+  double c11 = 0.0;
+  double c12 = 0.0;
+  double c44 = 0.0;
+
+  // Positive definite exactly when all three hold.
+  [[nodiscard]] bool stable() const { return c44 > 0.0 && c11 > c12 && c11 + 2.0 * c12 > 0.0; }
+
+  [[nodiscard]] double bulk_modulus() const { return (c11 + 2.0 * c12) / 3.0; }
+
+  // Uniaxial stress along a cube axis.
+  [[nodiscard]] double youngs_modulus_100() const {
+    return (c11 - c12) * (c11 + 2.0 * c12) / (c11 + c12);
+  }
+  [[nodiscard]] double poisson_ratio_100() const { return c12 / (c11 + c12); }
+
+  // The stiffest longitudinal wave of a cubic crystal runs along <100> or
+  // <111> (whichever has the larger modulus); the time step must resolve it.
+  [[nodiscard]] double max_longitudinal_modulus() const {
+    return std::max(c11, (c11 + 2.0 * c12 + 4.0 * c44) / 3.0);
+  }
+
+  // C : strain, with tensor shear components (sigma_xy = 2 C44 eps_xy).
+  [[nodiscard]] SymmetricTensor stress_for(const SymmetricTensor& e) const {
+    const double t = c12 * e.trace();
+    const double d = c11 - c12;
+    return {{t + d * e[0], t + d * e[1], t + d * e[2], 2.0 * c44 * e[3], 2.0 * c44 * e[4],
+             2.0 * c44 * e[5]}};
+  }
+
+  // 1/2 stress : C^-1 : stress. The normal part inverts
+  // [c11 c12 c12; ...] through its eigenvalues c11 + 2 c12 (hydrostatic)
+  // and c11 - c12 (the two deviatoric normal modes).
+  [[nodiscard]] double strain_energy_density(const SymmetricTensor& s) const {
+    const double mean = s.trace() / 3.0;
+    const SymmetricTensor dev = deviator(s);
+    const double normal = 3.0 * mean * mean / (c11 + 2.0 * c12) +
+                          (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) / (c11 - c12);
+    const double shear = (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]) / c44;
+    return 0.5 * normal + 0.5 * shear;
+  }
+};
+
+}  // namespace pbms::mpm
