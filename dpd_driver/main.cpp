@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   registry.add<pbms::dpd::DpdEquilibrateStage>();
   registry.add<pbms::dpd::DpdElasticStage>();
   registry.add<pbms::dpd::DpdIsothermStage>();
+  registry.add<pbms::dpd::DpdUniaxialStrainStage>();
   registry.add<pbms::dpd::ConcurrentStage>();
   pbms::DriverInfo info{"dpd_driver", "dpd", {}};
   return pbms::run_driver(argc, argv, info, registry);

@@ -11,6 +11,7 @@
 #include "pbms/units.hpp"
 #include "properties/elastic_constants.hpp"
 #include "properties/isotherm.hpp"
+#include "properties/uniaxial_strain.hpp"
 
 namespace pbms::dpd {
 
@@ -170,8 +171,7 @@ void DpdElasticStage::run(StageContext& ctx) {
       return;
     }
     const ElasticConstants e = elastic_constants(*c.pair, c.spec, c.thermal);
-    // 4 particles per cubic cell; g/mol/Å^3 to kg/m^3.
-    const double rho = 4.0 * c.spec.mass / (a * a * a) * units::kGramPerCm3PerAmuPerA3 * 1000.0;
+    const double rho = fcc_density(a, c.spec.mass);
     r.add_scalar("c11", e.c11, "GPa");
     r.add_scalar("c12", e.c12, "GPa");
     r.add_scalar("c44", e.c44, "GPa");
@@ -278,6 +278,66 @@ void DpdIsothermStage::run(StageContext& ctx) {
     // lattice constant of a 0 GPa state: the one a dpd_elastic stage with
     // zero_pressure solves for, by the same call.
     r.add_column("isotherm", "lattice_constant", "Å", lattice);
+  });
+}
+
+config::StageKindSpec DpdUniaxialStrainStage::spec() {
+  config::StageKindSpec s;
+  s.kind = "dpd_uniaxial_strain";
+  s.program = "dpd_driver";
+  s.doc =
+      "Stress of the periodic DPD crystal compressed along [100] with its sides held (the "
+      "state behind a plane wave in a laterally confined target), at a temperature, and the "
+      "weak-shock speeds of its Rayleigh lines";
+  s.material_kinds = {"dpd_mesoparticle"};
+  s.params = crystal_params(ThermalSettings{}.sampling_steps);
+  s.params.push_back(Param::real_list("compressions", Dimension::kNone,
+                                      "1 - L/L0 along [100] of each state, increasing, in (0, 0.3]")
+                         .require()
+                         .length(1, 100));
+  s.outputs = {
+      {"lattice_constant", OutputSpec::Shape::kScalar, "Å",
+       "Lattice constant of the unstrained crystal"},
+      {"density", OutputSpec::Shape::kScalar, "kg/m^3", "Mass density of the unstrained crystal"},
+      {"uniaxial_strain", OutputSpec::Shape::kTable, "",
+       "compression, stress (-sigma_xx, GPa, relative to the unstrained crystal), "
+       "stress_error, lateral_stress (-(sigma_yy + sigma_zz)/2), shock_speed "
+       "(sqrt(stress / (rho0 compression)), m/s) and particle_velocity (compression x "
+       "shock_speed, m/s) of each state, and front_speed (m/s): the leading front of a wave "
+       "to that state, the largest shock_speed of it and the weaker states (a wave splits "
+       "where stress/compression falls)"},
+  };
+  return s;
+}
+
+void DpdUniaxialStrainStage::run(StageContext& ctx) {
+  on_rank_zero(ctx, [&] {
+    Crystal c = crystal_from(ctx);
+    if (ctx.params()["zero_pressure"].as<bool>()) {
+      c.spec.lattice_constant = zero_pressure_lattice_constant(*c.pair, c.spec, c.thermal);
+    }
+    const std::vector<UniaxialStrainPoint> curve = uniaxial_strain_curve(
+        *c.pair, c.spec, c.thermal, ctx.params()["compressions"].as<std::vector<double>>());
+    std::vector<double> compression, stress, error, lateral, shock, particle, front;
+    for (const UniaxialStrainPoint& q : curve) {
+      compression.push_back(q.compression);
+      stress.push_back(q.stress);
+      error.push_back(q.stress_error);
+      lateral.push_back(q.lateral_stress);
+      shock.push_back(q.shock_speed);
+      particle.push_back(q.particle_velocity);
+      front.push_back(q.front_speed);
+    }
+    auto& r = ctx.results();
+    r.add_scalar("lattice_constant", c.spec.lattice_constant, "Å");
+    r.add_scalar("density", fcc_density(c.spec.lattice_constant, c.spec.mass), "kg/m^3");
+    r.add_column("uniaxial_strain", "compression", "1", compression);
+    r.add_column("uniaxial_strain", "stress", "GPa", stress);
+    r.add_column("uniaxial_strain", "stress_error", "GPa", error);
+    r.add_column("uniaxial_strain", "lateral_stress", "GPa", lateral);
+    r.add_column("uniaxial_strain", "shock_speed", "m/s", shock);
+    r.add_column("uniaxial_strain", "particle_velocity", "m/s", particle);
+    r.add_column("uniaxial_strain", "front_speed", "m/s", front);
   });
 }
 

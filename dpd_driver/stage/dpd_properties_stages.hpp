@@ -1,4 +1,4 @@
-// dpd_elastic and dpd_isotherm: properties of the periodic bulk DPD crystal
+// dpd_elastic, dpd_isotherm and dpd_uniaxial_strain: properties of the periodic bulk DPD crystal
 // of a dpd_mesoparticle material, computed in process by the calculators of
 // properties/ (the same calls the MD->DPD fit makes). The crystal is small
 // (hundreds of particles), so rank 0 computes and the other ranks wait.
@@ -15,6 +15,12 @@ class DpdElasticStage : public StageKind {
 };
 
 class DpdIsothermStage : public StageKind {
+ public:
+  static config::StageKindSpec spec();
+  void run(StageContext& ctx) override;
+};
+
+class DpdUniaxialStrainStage : public StageKind {
  public:
   static config::StageKindSpec spec();
   void run(StageContext& ctx) override;

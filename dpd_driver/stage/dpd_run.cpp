@@ -15,6 +15,7 @@
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "pbms/analysis/first_crossing.hpp"
+#include "pbms/analysis/front_arrival.hpp"
 #include "pbms/analysis/tension_test.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
@@ -52,6 +53,62 @@ std::unique_ptr<DpdGridStep> make_grid_step(DpdEngine& engine, const YAML::Node&
   } catch (const Error& e) {
     throw Error(fmt::format("stage '{}': {}", stage, e.what()));
   }
+}
+
+// The two slabs' histories of an impact and their distance (Å).
+struct SlabHistories {
+  const std::vector<double>& time;
+  const std::vector<double>& near;
+  const std::vector<double>& far;
+  double distance;
+};
+
+// Arrival times, speeds and front velocities of an impact's slabs; where
+// the wave did not reach both, the histories are kept and the summary says
+// why there is no speed.
+void report_impact(const YAML::Node& impact, const SlabHistories& h, StageResults& r) {
+  r.add_column("slabs", "time", "ps", h.time);
+  r.add_column("slabs", "near_displacement", "Å", h.near);
+  r.add_column("slabs", "far_displacement", "Å", h.far);
+  const double threshold = impact["threshold"].as<double>();
+  const double t_near = analysis::first_crossing(h.time, h.near, threshold);
+  const double t_far = analysis::first_crossing(h.time, h.far, threshold);
+  if (!(t_far > t_near)) {
+    r.attributes["wave_speed"] = fmt::format(
+        "not measured: the wave did not reach both slabs (first motion near {:.4g} ps, far "
+        "{:.4g} ps); run longer or lower impact.threshold",
+        t_near, t_far);
+    return;
+  }
+  // Å/ps is 100 m/s.
+  constexpr double kMetresPerSecond = 100.0;
+  const double first_motion_speed = h.distance / (t_far - t_near) * kMetresPerSecond;
+  r.add_scalar("first_motion_near", t_near, "ps");
+  r.add_scalar("first_motion_far", t_far, "ps");
+  r.add_scalar("first_motion_speed", first_motion_speed, "m/s");
+  const double smoothing = impact["smoothing"].as<double>();
+  const double window = impact["window"].as<double>();
+  const analysis::FrontArrival near =
+      analysis::mid_amplitude_arrival(h.time, h.near, t_near, smoothing, window);
+  const analysis::FrontArrival far =
+      analysis::mid_amplitude_arrival(h.time, h.far, t_far, smoothing, window);
+  const bool mid_amplitude = impact["arrival"].as<std::string>() == "mid_amplitude";
+  if (far.time > near.time) {
+    const double speed = h.distance / (far.time - near.time) * kMetresPerSecond;
+    r.add_scalar("mid_amplitude_speed", speed, "m/s");
+    r.add_scalar("front_near", near.time, "ps");
+    r.add_scalar("front_far", far.time, "ps");
+    r.add_scalar("front_velocity_near", near.amplitude * kMetresPerSecond, "m/s");
+    r.add_scalar("front_velocity_far", far.amplitude * kMetresPerSecond, "m/s");
+    r.add_scalar("particle_velocity", 0.5 * (near.amplitude + far.amplitude) * kMetresPerSecond,
+                 "m/s");
+    if (mid_amplitude) r.add_scalar("wave_speed", speed, "m/s");
+  } else if (mid_amplitude) {
+    r.attributes["wave_speed"] = fmt::format(
+        "not measured: no mid-amplitude arrival at both slabs (near {:.4g} ps, far {:.4g} ps)",
+        near.time, far.time);
+  }
+  if (!mid_amplitude) r.add_scalar("wave_speed", first_motion_speed, "m/s");
 }
 
 void run_stage(StageContext& ctx, Mode mode) {
@@ -273,25 +330,8 @@ void run_stage(StageContext& ctx, Mode mode) {
     r.add_column("probes", probes.columns()[c], probes.units()[c], samples[c]);
   }
   if (mode == Mode::kImpact) {
-    const double threshold = p["impact"]["threshold"].as<double>();
-    const double t_near = analysis::first_crossing(slab_t, near_s, threshold);
-    const double t_far = analysis::first_crossing(slab_t, far_s, threshold);
-    r.add_column("slabs", "time", "ps", slab_t);
-    r.add_column("slabs", "near_displacement", "Å", near_s);
-    r.add_column("slabs", "far_displacement", "Å", far_s);
-    if (t_far > t_near) {
-      const double distance = std::abs(far0[impact_axis] - near0[impact_axis]);
-      // Å/ps is 100 m/s.
-      r.add_scalar("wave_speed", distance / (t_far - t_near) * 100.0, "m/s");
-      r.add_scalar("first_motion_near", t_near, "ps");
-      r.add_scalar("first_motion_far", t_far, "ps");
-    } else {
-      // The slab histories are kept; the summary says why there is no speed.
-      r.attributes["wave_speed"] = fmt::format(
-          "not measured: the wave did not reach both slabs (first motion near {:.4g} ps, far "
-          "{:.4g} ps); run longer or lower impact.threshold",
-          t_near, t_far);
-    }
+    report_impact(p["impact"],
+                  {slab_t, near_s, far_s, std::abs(far0[impact_axis] - near0[impact_axis])}, r);
   }
   if (mode == Mode::kTension) {
     tension_test.report(r, strain, stress, ctx.stage());

@@ -203,6 +203,20 @@ config::StageKindSpec DpdRunStage::spec() {
        Param::real("threshold", Dimension::kLength,
                    "A slab has moved when its centre of mass has moved this far along the axis")
            .def(0.25)
+           .above(0),
+       Param::choice("arrival", {"first_motion", "mid_amplitude"},
+                     "What wave_speed times: first_motion, the threshold's crossing (a foot "
+                     "that fires part-way up the front); mid_amplitude, half way up the slab's "
+                     "velocity rise, the shock speed that a Rayleigh line predicts")
+           .def(std::string("first_motion")),
+       Param::real("smoothing", Dimension::kTime,
+                   "Mid-amplitude: the slab velocity is a running mean over this time")
+           .def(0.05)
+           .above(0),
+       Param::real("window", Dimension::kTime,
+                   "Mid-amplitude: the front's top is the largest smoothed velocity within "
+                   "this time of the first motion")
+           .def(0.1)
            .above(0)},
       "mode: impact"));
   std::vector<Param> tension = {
@@ -217,8 +231,25 @@ config::StageKindSpec DpdRunStage::spec() {
       "elongation over its length"));
   s.outputs = common_outputs();
   s.outputs.push_back({"wave_speed", OutputSpec::Shape::kScalar, "m/s",
+                       "Distance between the slabs over the difference of their arrival times, "
+                       "by impact.arrival (impact)"});
+  s.outputs.push_back({"first_motion_speed", OutputSpec::Shape::kScalar, "m/s",
                        "Distance between the slabs over the difference of their first-motion "
                        "times (impact)"});
+  s.outputs.push_back({"mid_amplitude_speed", OutputSpec::Shape::kScalar, "m/s",
+                       "Distance between the slabs over the difference of their mid-amplitude "
+                       "arrival times (impact)"});
+  s.outputs.push_back({"front_near", OutputSpec::Shape::kScalar, "ps",
+                       "Mid-amplitude arrival time at the near slab (impact)"});
+  s.outputs.push_back({"front_far", OutputSpec::Shape::kScalar, "ps",
+                       "Mid-amplitude arrival time at the far slab (impact)"});
+  s.outputs.push_back({"front_velocity_near", OutputSpec::Shape::kScalar, "m/s",
+                       "The near slab's velocity at the top of the front (impact)"});
+  s.outputs.push_back({"front_velocity_far", OutputSpec::Shape::kScalar, "m/s",
+                       "The far slab's velocity at the top of the front (impact)"});
+  s.outputs.push_back({"particle_velocity", OutputSpec::Shape::kScalar, "m/s",
+                       "Mean of the two slabs' front velocities: the particle velocity behind "
+                       "the front between them (impact)"});
   s.outputs.push_back({"first_motion_near", OutputSpec::Shape::kScalar, "ps",
                        "First-motion time of the near slab (impact)"});
   s.outputs.push_back({"first_motion_far", OutputSpec::Shape::kScalar, "ps",
