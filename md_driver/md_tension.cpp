@@ -234,10 +234,34 @@ std::vector<std::vector<double>> pull_nanowire(StageContext& ctx, Lammps& lmp, c
   return lmp.fix_array("samples", 4);
 }
 
+// Samples of the periodic box every `every` steps: strain lx/l0 - 1 and the
+// stresses from the pressure tensor (tension positive, GPa), each averaged
+// over the window, and the temperature; also printed in full precision for
+// the plain `lmp -in` comparison.
+void sample_box(Lammps& lmp, double l0, int64_t every) {
+  const double to_gpa = 1.0 / units::kBarPerGPa;
+  lmp.command(fmt::format("variable strain equal lx/{:.15g}-1", l0));
+  for (const char* c : {"xx", "yy", "zz"}) {
+    lmp.command(fmt::format("variable s{0} equal -p{0}*{1}", c, to_gpa));
+  }
+  lmp.command(
+      fmt::format("fix stress_avg all ave/time 1 {0} {0} v_strain v_sxx v_syy v_szz", every));
+  const char* names[] = {"strain_avg", "sxx_avg", "syy_avg", "szz_avg"};
+  for (int i = 0; i < 4; ++i) {
+    lmp.command(fmt::format("variable {} equal f_stress_avg[{}]", names[i], i + 1));
+  }
+  lmp.command("variable temp_now equal temp");
+  lmp.command(fmt::format(
+      "fix samples all vector {} v_strain_avg v_sxx_avg v_syy_avg v_szz_avg v_temp_now", every));
+  lmp.command(fmt::format(
+      "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain_avg) $(v_sxx_avg) "
+      "$(v_syy_avg) $(v_szz_avg) $(v_temp_now)\" screen yes",
+      every));
+}
+
 // The periodic crystal: rows of (strain, stress xx, yy, zz, temperature).
 std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp, const Settings& s) {
-  const MdMaterial mat = material_of(ctx);
-  build_crystal(lmp, mat, s.a, s.cells, "p p p");
+  build_crystal(lmp, material_of(ctx), s.a, s.cells, "p p p");
   lmp.command(fmt::format("timestep {}", s.dt));
   // Strain is measured against the crystal at `lattice_constant`, which is
   // stress free at the temperature when that is the isotherm's zero-pressure
@@ -249,11 +273,11 @@ std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp, c
   lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
                           2.0 * s.temperature, lammps_seed(ctx.seed(), 7)));
   // Nose-Hoover NPT on y and z alone (uncoupled, zero target stress) while x
-  // is held, then stretched by fix deform. One fix, kept from equilibration
-  // through loading, so the barostat starts the ramp settled. Its 1 ps
-  // damping (md_isotherm's) follows a 0.1 %/ps ramp with a lag far below
-  // the stress noise (lateral_stress reports it); a Berendsen barostat
-  // would add a second, inconsistent temperature coupling for no gain.
+  // is held, then stretched by fix deform. One fix from equilibration
+  // through loading, so the barostat starts the ramp settled; a Berendsen
+  // barostat beside fix nvt would add a second coupling for no gain. With
+  // md_isotherm's 1 ps damping it follows ramps up to 0.4 %/ps: the lateral
+  // stress then changes by < 0.03 GPa per unit strain (C12 ~ 120 GPa if held).
   lmp.command(fmt::format("fix npt all npt temp {0} {0} 0.1 y 0 0 1.0 z 0 0 1.0", s.temperature));
   lmp.command("thermo_style custom step temp pe lx ly lz pxx pyy pzz");
   lmp.command("thermo 1000");
@@ -263,30 +287,10 @@ std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp, c
     run_stage_part(ctx, lmp, traj, s, 0, s.n_equil, [](int64_t) { return "equilibration"; });
   }
   lmp.command("reset_timestep 0");
-  // Box length grows at the constant speed rate * l0: engineering strain
-  // rate `rate` against the reference length.
+  // The box grows at the constant speed rate * l0: engineering strain rate
+  // `rate` against the reference length.
   lmp.command(fmt::format("fix stretch all deform 1 x vel {:.15g} remap x units box", s.rate * l0));
-  // Stress from the pressure tensor (tension positive, GPa); strain from the
-  // box length; both averaged over the same sampling window.
-  const double to_gpa = 1.0 / units::kBarPerGPa;
-  lmp.command(fmt::format("variable strain equal lx/{:.15g}-1", l0));
-  for (const char* c : {"xx", "yy", "zz"}) {
-    lmp.command(fmt::format("variable s{0} equal -p{0}*{1}", c, to_gpa));
-  }
-  lmp.command(
-      fmt::format("fix stress_avg all ave/time 1 {0} {0} v_strain v_sxx v_syy v_szz", s.every));
-  const char* names[] = {"strain_avg", "sxx_avg", "syy_avg", "szz_avg"};
-  for (int i = 0; i < 4; ++i) {
-    lmp.command(fmt::format("variable {} equal f_stress_avg[{}]", names[i], i + 1));
-  }
-  lmp.command("variable temp_now equal temp");
-  lmp.command(fmt::format(
-      "fix samples all vector {} v_strain_avg v_sxx_avg v_syy_avg v_szz_avg v_temp_now", s.every));
-  // Printed in full precision for the plain `lmp -in` comparison.
-  lmp.command(fmt::format(
-      "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain_avg) $(v_sxx_avg) "
-      "$(v_syy_avg) $(v_szz_avg) $(v_temp_now)\" screen yes",
-      s.every));
+  sample_box(lmp, l0, s.every);
   run_stage_part(ctx, lmp, traj, s, s.n_equil, s.n_load, [&](int64_t done) {
     return fmt::format("strain {:.4f}", s.initial_strain + done * s.dt * s.rate);
   });
