@@ -298,40 +298,10 @@ std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp, c
   return lmp.fix_array("samples", 5);
 }
 
-// Residuals of y about its least-squares parabola in x (normal equations in
-// x - mean(x), solved by Cramer's rule: 3x3, well conditioned once centred).
-std::vector<double> residuals_about_parabola(const std::vector<double>& x,
-                                             const std::vector<double>& y) {
-  const double mx = analysis::mean(x);
-  double m[5] = {}, b[3] = {};  // m[k] = sum u^k, b[k] = sum u^k y
-  for (size_t i = 0; i < x.size(); ++i) {
-    const double u = x[i] - mx;
-    double uk = 1.0;
-    for (int k = 0; k < 5; ++k, uk *= u) {
-      m[k] += uk;
-      if (k < 3) b[k] += uk * y[i];
-    }
-  }
-  auto det3 = [](double a, double b1, double c, double d, double e, double f, double g, double h,
-                 double i) {
-    return a * (e * i - f * h) - b1 * (d * i - f * g) + c * (d * h - e * g);
-  };
-  const double d = det3(m[0], m[1], m[2], m[1], m[2], m[3], m[2], m[3], m[4]);
-  const double c0 = det3(b[0], m[1], m[2], b[1], m[2], m[3], b[2], m[3], m[4]) / d;
-  const double c1 = det3(m[0], b[0], m[2], m[1], b[1], m[3], m[2], b[2], m[4]) / d;
-  const double c2 = det3(m[0], m[1], b[0], m[1], m[2], b[1], m[2], m[3], b[2]) / d;
-  std::vector<double> r(x.size());
-  for (size_t i = 0; i < x.size(); ++i) {
-    const double u = x[i] - mx;
-    r[i] = y[i] - (c0 + c1 * u + c2 * u * u);
-  }
-  return r;
-}
-
 // Least-squares line through the samples up to fit_max. With `blocked`, the
 // slope's standard error comes from 10 blocks of residuals, since
 // consecutive stress samples are correlated (phonons, the thermostat and
-// barostat). The residuals are taken about a parabola: the curve bends
+// barostat); the residuals are about a parabola, since the curve bends
 // (Mishin copper stiffens by ~300 GPa * strain^2 along [100]) and a line's
 // residuals would count that bend as noise.
 analysis::LineFit fit_elastic(const StageContext& ctx, const std::vector<double>& strain,
@@ -350,14 +320,7 @@ analysis::LineFit fit_elastic(const StageContext& ctx, const std::vector<double>
                     ctx.stage(), fx.size(), fit_max));
   }
   auto fit = analysis::fit_line(fx, fy);
-  if (!blocked || fx.size() < 20) return fit;
-  const double mx = analysis::mean(fx);
-  double sxx = 0.0;
-  for (double v : fx) sxx += (v - mx) * (v - mx);
-  // block_se^2 * n is the variance per sample that the correlations leave.
-  const double n = static_cast<double>(fx.size());
-  fit.slope_error =
-      analysis::block_standard_error(residuals_about_parabola(fx, fy), 10) * std::sqrt(n / sxx);
+  if (blocked) fit.slope_error = analysis::slope_block_error(fx, fy, 10);
   return fit;
 }
 
