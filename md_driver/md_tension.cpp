@@ -1,6 +1,8 @@
 #include "md_tension.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 
 #include <fmt/format.h>
 
@@ -20,13 +22,18 @@ config::StageKindSpec TensionStage::spec() {
   s.kind = "md_tension";
   s.program = "md_driver";
   s.doc =
-      "Tension of a nanowire with free surfaces, pulled along x by rigid grips at a "
-      "constant strain rate, Nose-Hoover NVT";
+      "Uniaxial tension along x at a constant strain rate: a nanowire with free surfaces "
+      "pulled by rigid grips (Nose-Hoover NVT), or a crystal periodic in x, y, z stretched "
+      "by its box with y and z held at zero stress (Nose-Hoover NPT on y, z)";
   s.material_kinds = {"eam_alloy", "eam_fs"};
   s.cacheable = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
-      Param::int_list("cells", "Wire size in unit cells (length x, cross-section y, z)")
+      Param::choice("lateral", {"free", "periodic"},
+                    "free: a nanowire with free surfaces, pulled by grips; periodic: a bulk "
+                    "crystal, periodic in all directions, laterally stress free")
+          .def(std::string("free")),
+      Param::int_list("cells", "Crystal size in unit cells (length x, cross-section y, z)")
           .def(std::vector<int>{40, 10, 10})
           .length(3, 3)
           .at_least(2),
@@ -35,9 +42,16 @@ config::StageKindSpec TensionStage::spec() {
           .above(0)
           .referable(),
       Param::real("temperature", Dimension::kTemperature, "Temperature").def(300.0).above(0),
-      Param::real("strain_rate", Dimension::kRate, "Engineering strain rate of the gauge")
+      Param::real("strain_rate", Dimension::kRate,
+                  "Engineering strain rate of the gauge (free) or of the box (periodic)")
           .def(1.0e-3)
           .above(0),
+      Param::real("initial_strain", Dimension::kNone,
+                  "periodic only: strain of the box during equilibration, where loading starts; "
+                  "negative (compression) centres the fit window on zero strain")
+          .def(0.0)
+          .at_least(-0.05)
+          .at_most(0.0),
       Param::real("max_strain", Dimension::kNone, "Strain at which the test stops")
           .def(0.1)
           .above(0)
@@ -46,9 +60,11 @@ config::StageKindSpec TensionStage::spec() {
                   "Young's modulus is fitted to strains up to this value")
           .def(0.02)
           .above(0),
-      Param::integer("grip_cells", "Thickness of each rigid grip in unit cells").def(2).at_least(1),
+      Param::integer("grip_cells", "free only: thickness of each rigid grip in unit cells")
+          .def(2)
+          .at_least(1),
       Param::real("timestep", Dimension::kTime, "MD time step").def(0.002).above(0).at_most(0.01),
-      Param::real("equilibration", Dimension::kTime, "NVT time before loading")
+      Param::real("equilibration", Dimension::kTime, "Time at temperature before loading")
           .def(10.0)
           .at_least(0),
       Param::integer("sample_every", "Steps between stress samples").def(50).above(0),
@@ -58,44 +74,83 @@ config::StageKindSpec TensionStage::spec() {
   };
   s.outputs = {
       {"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
-       "Slope of the gauge's virial stress vs strain up to fit_max_strain"},
+       "Slope of the axial stress (the gauge's virial stress, or the periodic box's) vs "
+       "strain up to fit_max_strain; its error from blocks of residuals when periodic"},
       {"youngs_modulus_grip_force", OutputSpec::Shape::kScalar, "GPa",
-       "The same slope from the grip forces over the initial cross-section"},
+       "free: the same slope from the grip forces over the initial cross-section"},
+      {"lateral_stress", OutputSpec::Shape::kScalar, "GPa",
+       "periodic: mean of the y and z stresses over the fit window (zero if laterally free)"},
       {"ultimate_stress", OutputSpec::Shape::kScalar, "GPa", "Largest stress reached"},
       {"strain_at_ultimate", OutputSpec::Shape::kScalar, "1", "Strain at the largest stress"},
       {"stress_strain", OutputSpec::Shape::kTable, "",
-       "Strain, virial stress, grip-force stress and temperature"},
+       "Strain, axial stress, then the grip-force stress (free) or the y and z stresses "
+       "(periodic), and temperature"},
   };
   return s;
 }
 
-void TensionStage::run(StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  const MdMaterial mat = material_of(ctx);
-  const auto cells = cells_of(p["cells"]);
-  const double a =
-      p["lattice_constant"] ? p["lattice_constant"].as<double>() : mat.lattice_constant;
-  const double temperature = p["temperature"].as<double>();
-  const double rate = p["strain_rate"].as<double>();
-  const double max_strain = p["max_strain"].as<double>();
-  const double fit_max = p["fit_max_strain"].as<double>();
-  const int grip = p["grip_cells"].as<int>();
-  const double dt = p["timestep"].as<double>();
-  const int64_t n_equil = steps_for(p["equilibration"].as<double>(), dt);
-  const int64_t every = p["sample_every"].as<int64_t>();
-  const int64_t traj_every = p["trajectory_every"].as<int64_t>();
-  if (2 * grip >= cells[0] - 1) {
-    throw Error(fmt::format("stage '{}': grips of {} cells leave no wire between them in {} cells",
-                            ctx.stage(), grip, cells[0]));
-  }
-  const double area = cells[1] * a * cells[2] * a;
-  const int64_t n_load = steps_for(max_strain / rate, dt);
-  const int64_t total = n_equil + n_load;
+namespace {
 
-  Lammps lmp(ctx.comm(), ctx.stage_dir() / "tension.log");
-  lmp.comment(fmt::format("PBMS md_tension '{}': {}x{}x{} cells, {} K, strain rate {} 1/ps",
-                          ctx.stage(), cells[0], cells[1], cells[2], temperature, rate));
-  build_crystal(lmp, mat, a, cells, "s s s");
+struct Settings {
+  bool periodic = false;
+  std::array<int, 3> cells{};
+  double a = 0, temperature = 0, rate = 0, initial_strain = 0, max_strain = 0, fit_max = 0;
+  double dt = 0;
+  int grip = 0;
+  int64_t n_equil = 0, n_load = 0, every = 0, traj_every = 0;
+};
+
+Settings settings_of(const StageContext& ctx) {
+  const YAML::Node& p = ctx.params();
+  Settings s;
+  s.periodic = p["lateral"].as<std::string>() == "periodic";
+  s.cells = cells_of(p["cells"]);
+  s.a = p["lattice_constant"] ? p["lattice_constant"].as<double>()
+                              : material_of(ctx).lattice_constant;
+  s.temperature = p["temperature"].as<double>();
+  s.rate = p["strain_rate"].as<double>();
+  s.initial_strain = p["initial_strain"].as<double>();
+  s.max_strain = p["max_strain"].as<double>();
+  s.fit_max = p["fit_max_strain"].as<double>();
+  s.grip = p["grip_cells"].as<int>();
+  s.dt = p["timestep"].as<double>();
+  s.n_equil = steps_for(p["equilibration"].as<double>(), s.dt);
+  s.n_load = steps_for((s.max_strain - s.initial_strain) / s.rate, s.dt);
+  s.every = p["sample_every"].as<int64_t>();
+  s.traj_every = p["trajectory_every"].as<int64_t>();
+  if (!s.periodic && s.initial_strain != 0.0) {
+    throw Error(
+        fmt::format("stage '{}': initial_strain applies to lateral: periodic only; a "
+                    "nanowire starts unstrained",
+                    ctx.stage()));
+  }
+  if (!s.periodic && 2 * s.grip >= s.cells[0] - 1) {
+    throw Error(fmt::format("stage '{}': grips of {} cells leave no wire between them in {} cells",
+                            ctx.stage(), s.grip, s.cells[0]));
+  }
+  return s;
+}
+
+// Runs `steps` steps of the stage from step `offset` on, writing frames and
+// reporting progress with `label(done)`.
+void run_stage_part(StageContext& ctx, Lammps& lmp, TrajectoryRecorder& traj, const Settings& s,
+                    int64_t offset, int64_t steps,
+                    const std::function<std::string(int64_t)>& label) {
+  const int64_t total = s.n_equil + s.n_load;
+  lmp.run(steps, chunk_for(total, s.traj_every), [&](int64_t done) {
+    traj.maybe_write(offset + done, (offset + done) * s.dt);
+    ctx.progress(offset + done, total, (offset + done) * s.dt, label(done));
+  });
+}
+
+// The nanowire: rows of (strain, virial stress, grip-force stress, wire
+// temperature), one per sample, the first at step 0.
+std::vector<std::vector<double>> pull_nanowire(StageContext& ctx, Lammps& lmp, const Settings& s) {
+  const MdMaterial mat = material_of(ctx);
+  const double a = s.a, temperature = s.temperature, rate = s.rate, dt = s.dt;
+  const int64_t every = s.every;
+  const double area = s.cells[1] * a * s.cells[2] * a;
+  build_crystal(lmp, mat, a, s.cells, "s s s");
   lmp.command(fmt::format("timestep {}", dt));
   // Relax the surfaces at 0 K first: a thin wire cut from bulk contracts by
   // ~1 %, and doing that in MD would leave it ringing axially for many ps.
@@ -108,14 +163,10 @@ void TensionStage::run(StageContext& ctx) {
   lmp.command("fix no_drift all momentum 100 linear 1 1 1 angular");
   lmp.command("thermo_style custom step temp pe lx");
   lmp.command("thermo 1000");
-  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", traj_every, {false, false, false});
+  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", s.traj_every, {false, false, false});
   traj.maybe_write(0, 0.0);
-  const int64_t chunk = chunk_for(total, traj_every);
-  if (n_equil > 0) {
-    lmp.run(n_equil, chunk, [&](int64_t done) {
-      traj.maybe_write(done, done * dt);
-      ctx.progress(done, total, done * dt, "equilibration");
-    });
+  if (s.n_equil > 0) {
+    run_stage_part(ctx, lmp, traj, s, 0, s.n_equil, [](int64_t) { return "equilibration"; });
   }
   lmp.command("unfix nvt");
   lmp.command("unfix no_drift");
@@ -124,7 +175,7 @@ void TensionStage::run(StageContext& ctx) {
   lmp.command("variable xlo equal bound(all,xmin)");
   lmp.command("variable xhi equal bound(all,xmax)");
   const double xlo = lmp.variable("xlo"), xhi = lmp.variable("xhi");
-  const double grip_len = grip * a;
+  const double grip_len = s.grip * a;
   const double gauge = xhi - xlo - 2.0 * grip_len;
   const double grip_speed = 0.5 * rate * gauge;
   lmp.command(
@@ -177,51 +228,150 @@ void TensionStage::run(StageContext& ctx) {
       "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain) $(v_virial_avg) "
       "$(v_grip_avg) $(v_wire_temp)\" screen yes",
       every));
-  lmp.run(n_load, chunk, [&](int64_t done) {
-    traj.maybe_write(n_equil + done, (n_equil + done) * dt);
-    ctx.progress(n_equil + done, total, (n_equil + done) * dt,
-                 fmt::format("strain {:.4f}", done * dt * rate));
+  run_stage_part(ctx, lmp, traj, s, s.n_equil, s.n_load,
+                 [&](int64_t done) { return fmt::format("strain {:.4f}", done * dt * rate); });
+  if (ctx.rank() == 0 && traj.enabled()) ctx.results().files.push_back(traj.relative_path());
+  return lmp.fix_array("samples", 4);
+}
+
+// Samples of the periodic box every `every` steps: strain lx/l0 - 1 and the
+// stresses from the pressure tensor (tension positive, GPa), each averaged
+// over the window, and the temperature; also printed in full precision for
+// the plain `lmp -in` comparison.
+void sample_box(Lammps& lmp, double l0, int64_t every) {
+  const double to_gpa = 1.0 / units::kBarPerGPa;
+  lmp.command(fmt::format("variable strain equal lx/{:.15g}-1", l0));
+  for (const char* c : {"xx", "yy", "zz"}) {
+    lmp.command(fmt::format("variable s{0} equal -p{0}*{1}", c, to_gpa));
+  }
+  lmp.command(
+      fmt::format("fix stress_avg all ave/time 1 {0} {0} v_strain v_sxx v_syy v_szz", every));
+  const char* names[] = {"strain_avg", "sxx_avg", "syy_avg", "szz_avg"};
+  for (int i = 0; i < 4; ++i) {
+    lmp.command(fmt::format("variable {} equal f_stress_avg[{}]", names[i], i + 1));
+  }
+  lmp.command("variable temp_now equal temp");
+  lmp.command(fmt::format(
+      "fix samples all vector {} v_strain_avg v_sxx_avg v_syy_avg v_szz_avg v_temp_now", every));
+  lmp.command(fmt::format(
+      "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain_avg) $(v_sxx_avg) "
+      "$(v_syy_avg) $(v_szz_avg) $(v_temp_now)\" screen yes",
+      every));
+}
+
+// The periodic crystal: rows of (strain, stress xx, yy, zz, temperature).
+std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp, const Settings& s) {
+  build_crystal(lmp, material_of(ctx), s.a, s.cells, "p p p");
+  lmp.command(fmt::format("timestep {}", s.dt));
+  // Strain is measured against the crystal at `lattice_constant`, which is
+  // stress free at the temperature when that is the isotherm's zero-pressure
+  // value; a small error in it shifts the curve, not its slope.
+  const double l0 = s.cells[0] * s.a;
+  if (s.initial_strain != 0.0) {
+    lmp.command(fmt::format("change_box all x scale {:.15g} remap", 1.0 + s.initial_strain));
+  }
+  lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
+                          2.0 * s.temperature, lammps_seed(ctx.seed(), 7)));
+  // Nose-Hoover NPT on y and z alone (uncoupled, zero target stress) while x
+  // is held, then stretched by fix deform. One fix from equilibration
+  // through loading, so the barostat starts the ramp settled; a Berendsen
+  // barostat beside fix nvt would add a second coupling for no gain. With
+  // md_isotherm's 1 ps damping it follows ramps up to 0.4 %/ps: the lateral
+  // stress then changes by < 0.03 GPa per unit strain (C12 ~ 120 GPa if held).
+  lmp.command(fmt::format("fix npt all npt temp {0} {0} 0.1 y 0 0 1.0 z 0 0 1.0", s.temperature));
+  lmp.command("thermo_style custom step temp pe lx ly lz pxx pyy pzz");
+  lmp.command("thermo 1000");
+  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", s.traj_every, {true, true, true});
+  traj.maybe_write(0, 0.0);
+  if (s.n_equil > 0) {
+    run_stage_part(ctx, lmp, traj, s, 0, s.n_equil, [](int64_t) { return "equilibration"; });
+  }
+  lmp.command("reset_timestep 0");
+  // The box grows at the constant speed rate * l0: engineering strain rate
+  // `rate` against the reference length.
+  lmp.command(fmt::format("fix stretch all deform 1 x vel {:.15g} remap x units box", s.rate * l0));
+  sample_box(lmp, l0, s.every);
+  run_stage_part(ctx, lmp, traj, s, s.n_equil, s.n_load, [&](int64_t done) {
+    return fmt::format("strain {:.4f}", s.initial_strain + done * s.dt * s.rate);
   });
-  auto rows = lmp.fix_array("samples", 4);
+  if (ctx.rank() == 0 && traj.enabled()) ctx.results().files.push_back(traj.relative_path());
+  return lmp.fix_array("samples", 5);
+}
+
+// Least-squares line through the samples up to fit_max. With `blocked`, the
+// slope's standard error comes from 10 blocks of residuals, since
+// consecutive stress samples are correlated (phonons, the thermostat and
+// barostat); the residuals are about a parabola, since the curve bends
+// (Mishin copper stiffens by ~300 GPa * strain^2 along [100]) and a line's
+// residuals would count that bend as noise.
+analysis::LineFit fit_elastic(const StageContext& ctx, const std::vector<double>& strain,
+                              const std::vector<double>& y, double fit_max, bool blocked) {
+  std::vector<double> fx, fy;
+  for (size_t i = 0; i < strain.size(); ++i) {
+    if (strain[i] <= fit_max) {
+      fx.push_back(strain[i]);
+      fy.push_back(y[i]);
+    }
+  }
+  if (fx.size() < 3) {
+    throw Error(
+        fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
+                    "more often or raise fit_max_strain",
+                    ctx.stage(), fx.size(), fit_max));
+  }
+  auto fit = analysis::fit_line(fx, fy);
+  if (blocked) fit.slope_error = analysis::slope_block_error(fx, fy, 10);
+  return fit;
+}
+
+void report(StageContext& ctx, const Settings& s, std::vector<std::vector<double>> rows) {
   // Row 0 is step 0, before any window was averaged.
   if (!rows.empty()) rows.erase(rows.begin());
-  const auto strain = column(rows, 0), stress = column(rows, 1), grip_stress = column(rows, 2),
-             temp = column(rows, 3);
-
-  auto elastic_fit = [&](const std::vector<double>& y) {
-    std::vector<double> fx, fy;
-    for (size_t i = 0; i < strain.size(); ++i) {
-      if (strain[i] <= fit_max) {
-        fx.push_back(strain[i]);
-        fy.push_back(y[i]);
-      }
-    }
-    if (fx.size() < 3) {
-      throw Error(
-          fmt::format("stage '{}': only {} samples below fit_max_strain = {}; sample "
-                      "more often or raise fit_max_strain",
-                      ctx.stage(), fx.size(), fit_max));
-    }
-    return analysis::fit_line(fx, fy);
-  };
-  const auto fit = elastic_fit(stress);
-  const auto grip_fit = elastic_fit(grip_stress);
-  const auto peak = std::max_element(stress.begin(), stress.end()) - stress.begin();
+  const auto strain = column(rows, 0), stress = column(rows, 1);
   auto& r = ctx.results();
+  const auto fit = fit_elastic(ctx, strain, stress, s.fit_max, s.periodic);
   r.add_scalar("youngs_modulus", fit.slope, "GPa", fit.slope_error);
-  r.add_scalar("youngs_modulus_grip_force", grip_fit.slope, "GPa", grip_fit.slope_error);
-  r.add_scalar("ultimate_stress", stress[static_cast<size_t>(peak)], "GPa");
-  r.add_scalar("strain_at_ultimate", strain[static_cast<size_t>(peak)], "1");
   r.add_column("stress_strain", "strain", "1", strain);
   r.add_column("stress_strain", "stress", "GPa", stress);
-  r.add_column("stress_strain", "grip_stress", "GPa", grip_stress);
-  r.add_column("stress_strain", "temperature", "K", temp);
-  r.attributes["fit_max_strain"] = fmt::format("{}", fit_max);
+  if (s.periodic) {
+    const auto syy = column(rows, 2), szz = column(rows, 3);
+    std::vector<double> lateral;
+    for (size_t i = 0; i < strain.size(); ++i) {
+      if (strain[i] <= s.fit_max) lateral.push_back(0.5 * (syy[i] + szz[i]));
+    }
+    r.add_scalar("lateral_stress", analysis::mean(lateral), "GPa",
+                 analysis::block_standard_error(lateral, 10));
+    r.add_column("stress_strain", "stress_yy", "GPa", syy);
+    r.add_column("stress_strain", "stress_zz", "GPa", szz);
+    r.add_column("stress_strain", "temperature", "K", column(rows, 4));
+  } else {
+    const auto grip_stress = column(rows, 2);
+    const auto grip_fit = fit_elastic(ctx, strain, grip_stress, s.fit_max, false);
+    r.add_scalar("youngs_modulus_grip_force", grip_fit.slope, "GPa", grip_fit.slope_error);
+    r.add_column("stress_strain", "grip_stress", "GPa", grip_stress);
+    r.add_column("stress_strain", "temperature", "K", column(rows, 3));
+  }
+  const auto peak = std::max_element(stress.begin(), stress.end()) - stress.begin();
+  r.add_scalar("ultimate_stress", stress[static_cast<size_t>(peak)], "GPa");
+  r.add_scalar("strain_at_ultimate", strain[static_cast<size_t>(peak)], "1");
+  r.attributes["fit_min_strain"] = fmt::format("{}", strain.empty() ? 0.0 : strain.front());
+  r.attributes["fit_max_strain"] = fmt::format("{}", s.fit_max);
   r.attributes["fit_intercept_gpa"] = fmt::format("{}", fit.intercept);
+}
+
+}  // namespace
+
+void TensionStage::run(StageContext& ctx) {
+  const Settings s = settings_of(ctx);
+  Lammps lmp(ctx.comm(), ctx.stage_dir() / "tension.log");
+  lmp.comment(fmt::format("PBMS md_tension '{}' ({}): {}x{}x{} cells, {} K, strain rate {} 1/ps",
+                          ctx.stage(), s.periodic ? "periodic" : "nanowire", s.cells[0], s.cells[1],
+                          s.cells[2], s.temperature, s.rate));
+  auto rows = s.periodic ? pull_periodic(ctx, lmp, s) : pull_nanowire(ctx, lmp, s);
+  report(ctx, s, std::move(rows));
   if (ctx.rank() == 0) {
     lmp.write_script(ctx.stage_dir() / "tension.in", "md_tension " + ctx.stage());
-    r.files.push_back(ctx.stage() + "/tension.in");
-    if (traj.enabled()) r.files.push_back(traj.relative_path());
+    ctx.results().files.push_back(ctx.stage() + "/tension.in");
   }
 }
 

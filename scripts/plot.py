@@ -221,12 +221,17 @@ def plot_tension(stage, outdir):
     strain, stress = t["strain"], t["stress"]
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     ax.plot(strain, stress, "o", ms=3, color="C0", label="MD", zorder=2)
+    if t.has("stress_yy", "stress_zz"):  # a laterally periodic pull
+        ax.plot(strain, 0.5 * (t["stress_yy"] + t["stress_zz"]), ".", ms=2, color="C2",
+                label="lateral stress (yy + zz)/2", zorder=2)
     e = stage.scalar("youngs_modulus")
     fit_max = stage.float_attr("fit_max_strain")
     intercept = stage.float_attr("fit_intercept_gpa") or 0.0
     if e is not None and np.isfinite(e):
         x_max = fit_max if fit_max is not None else float(np.max(strain))
-        x = np.linspace(0.0, x_max, 50)
+        # A periodic pull may start compressed: the fit starts at its first sample.
+        x_min = min(stage.float_attr("fit_min_strain") or 0.0, 0.0)
+        x = np.linspace(x_min, x_max, 50)
         ax.plot(x, e * x + intercept, "-", color="C3", lw=2, zorder=3,
                 label=(f"linear fit, strain ≤ {x_max:g}\n"
                        f"E = {fmt_err(e, stage.scalar_errors.get('youngs_modulus'))} GPa"))

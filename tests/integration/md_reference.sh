@@ -20,9 +20,13 @@ ok = 50 < E["value"] < 110
 bad += not ok
 sys.exit(1 if bad else 0)
 PYEOF
-# Every strained crystal (0 K and 298 K) and the nanowire, replayed by plain lmp
-# on the inputs md_driver wrote, on as many ranks: equal to 1e-9.
+# The laterally periodic, stress-free pull at 298 K: E within 5 % of E<100>
+# from the 298 K constants.
+"$PY" "$(dirname "$0")/check_periodic_tension.py" runs/md_reference tension_periodic elastic
+# Every strained crystal (0 K and 298 K), the nanowire and the periodic pull,
+# replayed by plain lmp on the inputs md_driver wrote, on as many ranks: equal to 1e-9.
 "$PY" "$(dirname "$0")/elastic_vs_lmp.py" runs/md_reference elastic
 "$PY" "$(dirname "$0")/tension_vs_lmp.py" runs/md_reference tension
+"$PY" "$(dirname "$0")/tension_vs_lmp.py" runs/md_reference tension_periodic
 "$PBMS" plot runs/md_reference >/dev/null
 echo "1 passed, 0 failed"

@@ -29,6 +29,8 @@ with h5py.File(f"{run}/pull/tension.h5md") as t:
     bad += not ok
 sys.exit(1 if bad else 0)
 PYEOF
-# The same wire, plain lmp on the input md_driver wrote: the same curve to 1e-9.
+"$PY" "$(dirname "$0")/check_periodic_tension.py" runs/tension_short pull_periodic elastic_298K
+# The same wire and crystal, plain lmp on the inputs md_driver wrote: the same curves to 1e-9.
 "$PY" "$(dirname "$0")/tension_vs_lmp.py" runs/tension_short pull
+"$PY" "$(dirname "$0")/tension_vs_lmp.py" runs/tension_short pull_periodic
 echo "1 passed, 0 failed"

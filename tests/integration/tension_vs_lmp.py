@@ -1,5 +1,7 @@
 """Replays the input an md_tension stage wrote with plain `lmp`, on as many
-ranks as md_driver had, and compares the stress-strain curve row by row.
+ranks as md_driver had, and compares the stress-strain curve row by row:
+the nanowire's (strain, virial and grip stresses) or the periodic crystal's
+(strain, stresses xx, yy and zz), whichever the stage ran.
 
 md_driver writes the input as it ran it (the MD runs chunk by chunk) and the
 input prints every stress sample with %.20g (PBMS_SAMPLE lines), so the
@@ -32,8 +34,12 @@ rows = np.array([[float(w) for w in l.split()[1:]] for l in open(screen)
 rows = rows[rows[:, 0] > 0]  # step 0 is before any window was averaged, as md_driver drops it
 with h5py.File(f"{run}/results.h5") as f:
     g = f[f"{stage}/stress_strain"]
-    strain, stress, grip = g["strain"][:], g["stress"][:], g["grip_stress"][:]
+    # The columns of PBMS_SAMPLE after the step, in the order md_driver prints them.
+    names = ["strain", "stress"] + (["grip_stress"] if "grip_stress" in g
+                                    else ["stress_yy", "stress_zz"])
+    table = {k: g[k][:] for k in names}
     E = f[f"{stage}/youngs_modulus"][()]
+strain = table["strain"]
 bad = 0
 
 
@@ -47,13 +53,12 @@ check(rows.shape[0] == strain.size, f"{stage}: plain lmp printed {rows.shape[0]}
       f"md_driver's table has {strain.size}")
 if rows.shape[0] == strain.size:
     scale = np.abs(rows[:, 2]).max()
-    for name, ours, col in (("strain", strain, 1), ("virial stress", stress, 2),
-                            ("grip stress", grip, 3)):
-        ref_scale = np.abs(rows[:, col]).max() if col == 1 else scale
-        d = np.abs(ours - rows[:, col]).max() / ref_scale
+    for col, name in enumerate(names, start=1):
+        ref_scale = np.abs(rows[:, col]).max() if name == "strain" else scale
+        d = np.abs(table[name] - rows[:, col]).max() / ref_scale
         check(d < 1e-9, f"{stage} {name}: md_driver vs plain lmp on {ranks} ranks, largest "
               f"difference {d:.1e} of the largest value (tolerance 1e-9)")
-    sel = rows[:, 1] <= fit_max
+    sel = rows[:, 1] <= fit_max  # from the first sample on, as md_driver fits
     E_lmp = np.polyfit(rows[sel, 1], rows[sel, 2], 1)[0]
     rel = abs(E - E_lmp) / abs(E_lmp)
     check(rel < 1e-9, f"{stage} Young's modulus: md_driver {E:.10g} GPa, from plain lmp's curve "

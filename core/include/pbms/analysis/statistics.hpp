@@ -19,6 +19,15 @@ struct LineFit {
 // Ordinary least squares y = slope * x + intercept. Needs >= 3 points.
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
 
+// Standard error of fit_line's slope when the noise in y is correlated in
+// sample order (a stress sampled along a strain ramp): the variance per
+// sample comes from `blocks` block means of the residuals, as in
+// block_standard_error. The residuals are taken about a least-squares
+// parabola, so that a curve's bend is not counted as noise. Needs >= 3
+// blocks of points; NaN otherwise.
+double slope_block_error(const std::vector<double>& x, const std::vector<double>& y,
+                         int blocks = 10);
+
 // Period of an oscillating sample y(t): the mean spacing of its upward
 // crossings of its mean, each located by linear interpolation. Throws
 // pbms::Error with fewer than two crossings.
