@@ -264,12 +264,26 @@ class Fit {
     int operator()(const Eigen::VectorXd& q, Eigen::VectorXd& r) const {
       std::vector<double> x(q.data(), q.data() + q.size());
       for (double& v : x) v = std::clamp(v, 0.0, 1.0);
-      fit->evaluate(x, 1, temperature);
+      if (!fit->repeats_last(x, temperature)) fit->evaluate(x, 1, temperature);
       const auto w = fit->weighted_residuals(fit->evaluations_.back());
       for (size_t i = 0; i < w.size(); ++i) r[static_cast<Eigen::Index>(i)] = w[i];
       return 0;
     }
   };
+
+  // Eigen's forward differences ask again for the point the last step ended
+  // at before every Jacobian. The judge gives the same answer for the same
+  // candidate and seed, so the last candidate stands in for it rather than
+  // judging it twice (one in n + 2 of the polish's candidates).
+  [[nodiscard]] bool repeats_last(const std::vector<double>& x, double temperature) const {
+    if (evaluations_.empty()) return false;
+    const Evaluation& last = evaluations_.back();
+    if (last.phase != 1 || last.temperature != temperature) return false;
+    for (size_t k = 0; k < x.size(); ++k) {
+      if (last.params[k] != from_unit(k, x[k])) return false;
+    }
+    return true;
+  }
 
   void least_squares(double temperature, int evaluations, const std::vector<double>& start) {
     if (fitted_count() < s_.free.size()) {
@@ -282,9 +296,12 @@ class Fit {
     // sampling error (the isotherm solve stops there).
     Eigen::NumericalDiff<LeastSquares> diff(f, temperature > 0.0 ? 1e-6 : 1e-12);
     Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LeastSquares>> lm(diff);
-    // Eigen counts the steps' evaluations only; each Jacobian adds one per
-    // parameter, so the budget is shared out that way.
-    lm.parameters.maxfev = std::max<int>(1, evaluations / static_cast<int>(s_.free.size() + 1));
+    // Eigen counts every call, the n + 1 of each forward-difference Jacobian
+    // included, and checks the count after each step: it can pass maxfev by
+    // a Jacobian and a step, n + 2 calls, one of which repeats_last saves.
+    // So the polish judges at most `evaluations` candidates.
+    const int n = static_cast<int>(s_.free.size());
+    lm.parameters.maxfev = std::max(1, evaluations - n);
     lm.parameters.xtol = s_.optimizer.x_tolerance;
     lm.parameters.ftol = s_.optimizer.f_tolerance;
     Eigen::VectorXd q =

@@ -5,7 +5,9 @@ source "$(dirname "$0")/lib.sh"
 #    candidates fall apart, and those are recorded as failed with a reason;
 #  - Sutton-Chen, epsilon, c and n free, from isotherm and elastic constants;
 #  - the Morse fit with a small budget on dpd_driver with 1 and 2 ranks
-#    (two one-rank judging groups) gives the same parameters, bit for bit.
+#    (two one-rank judging groups) gives the same parameters, bit for bit;
+#  - no candidate is judged twice in a row (Levenberg-Marquardt's repeat),
+#    and the polish judges about its budget, no more.
 cfg="$ROOT/tests/integration/configs"
 "$PBMS" run "$cfg/fit_recovery_morse.yaml" > morse.txt 2>&1 || { cat morse.txt; fail "Morse fit"; }
 "$PBMS" run "$cfg/fit_recovery_sutton_chen.yaml" > sc.txt 2>&1 || { cat sc.txt; fail "Sutton-Chen fit"; }
@@ -59,6 +61,19 @@ check(all(r is not None and b"unstable" in (r if isinstance(r, bytes) else r.enc
       "every failure is recorded with its reason")
 ok_obj = log["objective"][:][log["status"][:] == 1]
 check(all(log["objective"][i] >= 1.0 for i in failed), "failed candidates carry a penalty >= 1")
+# Levenberg-Marquardt asks for the point its last step reached again before
+# each Jacobian; that candidate is judged once.
+params = list(zip(log["phase"][:], log["d0"][:], log["alpha"][:], log["r0"][:]))
+twice = sum(params[i] == params[i - 1] for i in range(1, len(params)))
+check(twice == 0, f"no candidate judged twice in a row ({twice} of {len(params)})")
+
+# The small fit's polish (Levenberg-Marquardt, 30 candidates) judges no more
+# than its budget, and does not stop at a share of it: Eigen counts the
+# Jacobians' calls too and stops within a Jacobian and a step of its count
+# (5 calls here), one of each Jacobian's calls being the repeat not judged.
+phase = h5py.File("runs/small_1/results.h5")["fit/evaluation_log"]["phase"][:]
+local = int((phase == 1).sum())
+check(20 <= local <= 30, f"the polish judged {local} of its 30 candidates (at least 20, at most 30)")
 
 # 1 and 2 judging groups: the same fit.
 a = yaml.safe_load(open("runs/small_1/summary.yaml"))["stages"]["fit"]["results"]
