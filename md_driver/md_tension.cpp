@@ -51,7 +51,8 @@ config::StageKindSpec TensionStage::spec() {
                   "negative (compression) centres the fit window on zero strain")
           .def(0.0)
           .at_least(-0.05)
-          .at_most(0.0),
+          .at_most(0.0)
+          .only_when("lateral", "periodic"),
       Param::real("max_strain", Dimension::kNone, "Strain at which the test stops")
           .def(0.1)
           .above(0)

@@ -174,6 +174,10 @@ YAML::Node to_yaml(const Param& p) {
   if (p.allow_auto) n["or_auto"] = true;
   if (!p.stage_kinds.empty()) n["stage_kinds"] = p.stage_kinds;
   if (p.one_key) n["one_key"] = true;
+  if (!p.only_with.first.empty()) {
+    n["only_with"]["key"] = p.only_with.first;
+    n["only_with"]["value"] = p.only_with.second;
+  }
   for (const auto& f : p.fields) n["fields"].push_back(to_yaml(f));
   if (!p.discriminator.empty()) n["discriminator"] = p.discriminator;
   for (const auto& [v, fs] : p.variants) {
@@ -218,6 +222,10 @@ Param param_from_yaml(const YAML::Node& n) {
   p.allow_auto = n["or_auto"] && n["or_auto"].as<bool>();
   if (n["stage_kinds"]) p.stage_kinds = n["stage_kinds"].as<std::vector<std::string>>();
   p.one_key = n["one_key"] && n["one_key"].as<bool>();
+  if (n["only_with"]) {
+    p.only_with = {n["only_with"]["key"].as<std::string>(),
+                   n["only_with"]["value"].as<std::string>()};
+  }
   for (const auto& f : n["fields"]) p.fields.push_back(param_from_yaml(f));
   if (n["discriminator"]) p.discriminator = n["discriminator"].as<std::string>();
   for (const auto& vn : n["variants"]) {

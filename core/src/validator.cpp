@@ -312,7 +312,22 @@ YAML::Node Validator::check_fields(const std::vector<const Param*>& fields, cons
     YAML::Node resolved = check(*f, child, child_path);
     if (resolved.IsDefined() && !resolved.IsNull()) out[f->name] = resolved;
   }
+  check_only_with(fields, node, out, path);
   return out;
+}
+
+void Validator::check_only_with(const std::vector<const Param*>& fields, const YAML::Node& node,
+                                const YAML::Node& resolved, const std::string& path) {
+  for (const auto* f : fields) {
+    const auto& [key, value] = f->only_with;
+    if (key.empty() || !node[f->name].IsDefined()) continue;
+    const YAML::Node other = resolved[key];
+    const std::string actual = other.IsDefined() && other.IsScalar() ? other.Scalar() : "";
+    if (actual == value) continue;
+    error(node[f->name], join_path(path, f->name),
+          fmt::format("'{}' applies only with {}: {}{}", f->name, key, value,
+                      actual.empty() ? "" : fmt::format(" (here {} is '{}')", key, actual)));
+  }
 }
 
 YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::string& path) {

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -50,6 +51,11 @@ struct Param {
   // kName: the value names an earlier stage of one of these kinds.
   std::vector<std::string> stage_kinds;
   bool one_key = false;  // kMap: exactly one of its keys is given
+  // Given only when the sibling key `first` resolves to `second` (empty
+  // `first`: always allowed), e.g. md_tension's initial_strain with
+  // lateral: periodic. Travels in --describe, so the coupler refuses it
+  // before any rank starts.
+  std::pair<std::string, std::string> only_with;
   std::vector<Param> fields;
   // kMap with variants: `discriminator` names the key whose value picks the
   // extra fields in `variants` (stage "kind", material "kind").
@@ -116,6 +122,10 @@ struct Param {
   }
   Param& earlier_stage(std::vector<std::string> kinds) {
     stage_kinds = std::move(kinds);
+    return *this;
+  }
+  Param& only_when(std::string key, std::string value) {
+    only_with = {std::move(key), std::move(value)};
     return *this;
   }
   Param& exactly_one_key() {

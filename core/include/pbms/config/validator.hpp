@@ -49,6 +49,9 @@ class Validator {
  private:
   YAML::Node check_scalar(const Param& p, const YAML::Node& node, const std::string& path);
   void check_unique_keys(const YAML::Node& node, const std::string& path);
+  // Keys given although their only_with sibling resolved to another value.
+  void check_only_with(const std::vector<const Param*>& fields, const YAML::Node& node,
+                       const YAML::Node& resolved, const std::string& path);
   bool check_range(const Param& p, double v, const YAML::Node& node, const std::string& path);
 
   std::string file_;
