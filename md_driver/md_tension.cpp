@@ -119,6 +119,8 @@ Settings settings_of(const StageContext& ctx) {
   s.n_load = steps_for((s.max_strain - s.initial_strain) / s.rate, s.dt);
   s.every = p["sample_every"].as<int64_t>();
   s.traj_every = p["trajectory_every"].as<int64_t>();
+  // The schema already refuses the key with lateral: free (only_when); this
+  // guards a driver called without the coupler's validation.
   if (!s.periodic && s.initial_strain != 0.0) {
     throw Error(
         fmt::format("stage '{}': initial_strain applies to lateral: periodic only; a "
@@ -321,7 +323,17 @@ analysis::LineFit fit_elastic(const StageContext& ctx, const std::vector<double>
                     ctx.stage(), fx.size(), fit_max));
   }
   auto fit = analysis::fit_line(fx, fy);
-  if (blocked) fit.slope_error = analysis::slope_block_error(fx, fy, 10);
+  if (blocked) {
+    // Ten blocks of three samples at least, or the error would ignore the
+    // correlated noise that the periodic crystal's stress carries.
+    fit.slope_error = analysis::slope_block_error(fx, fy, 10);
+    if (!std::isfinite(fit.slope_error)) {
+      throw Error(
+          fmt::format("stage '{}': {} samples below fit_max_strain = {}; the block error "
+                      "of the modulus needs 30: sample more often",
+                      ctx.stage(), fx.size(), fit_max));
+    }
+  }
   return fit;
 }
 

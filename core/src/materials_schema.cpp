@@ -77,16 +77,19 @@ Param materials_schema() {
           .at_most(0.49)
           .referable(),
   };
-  std::vector<Param> j2_fields = elastic_fields;
-  j2_fields.push_back(Param::real("yield_stress", Dimension::kPressure, "Initial yield stress")
-                          .require()
-                          .above(0)
-                          .referable());
-  j2_fields.push_back(
+  // Von Mises yield with linear hardening, the same for both J2 styles.
+  const std::vector<Param> hardening_fields = {
+      Param::real("yield_stress", Dimension::kPressure, "Initial yield stress")
+          .require()
+          .above(0)
+          .referable(),
       Param::real("hardening_modulus", Dimension::kPressure, "Linear isotropic hardening modulus H")
           .def(0.0)
           .at_least(0)
-          .referable());
+          .referable(),
+  };
+  std::vector<Param> j2_fields = elastic_fields;
+  j2_fields.insert(j2_fields.end(), hardening_fields.begin(), hardening_fields.end());
   const auto modulus = [](const char* name, const char* doc) {
     return Param::real(name, Dimension::kPressure, doc).require().referable();
   };
@@ -96,7 +99,7 @@ Param materials_schema() {
       modulus("c12", "Cubic elastic constant C12"),
       modulus("c44", "Cubic elastic constant C44").above(0),
   };
-  cubic_j2_fields.insert(cubic_j2_fields.end(), j2_fields.end() - 2, j2_fields.end());
+  cubic_j2_fields.insert(cubic_j2_fields.end(), hardening_fields.begin(), hardening_fields.end());
   const std::vector<Param> gas_fields = {
       density,
       Param::real("gamma", Dimension::kNone, "Ratio of specific heats").def(1.4).above(1.0),

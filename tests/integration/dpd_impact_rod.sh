@@ -28,7 +28,7 @@ print(f"     rod: mid-amplitude {v:.0f} m/s, first motion "
       f"{value('impact', 'first_motion_speed'):.0f} m/s, u_p "
       f"{value('impact', 'particle_velocity'):.1f} m/s; seed 3846 m/s; "
       f"bar {bar:.0f}, longitudinal {lon:.0f} m/s")
-c.check(v <= 1.05 * lon, f"rod wave speed {v:.0f} m/s <= 1.05 x {lon:.0f} m/s")
+c.check(0 < v <= 1.05 * lon, f"rod wave speed 0 < {v:.0f} m/s <= 1.05 x {lon:.0f} m/s")
 print(f"info rod wave speed in [0.95 x {bar:.0f}, 1.05 x {lon:.0f}] m/s: "
       f"{0.95 * bar <= v <= 1.05 * lon}; against the seed's 3846 m/s: "
       f"{100 * (v - 3846) / 3846:+.1f} %")

@@ -23,8 +23,8 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
 // sample order (a stress sampled along a strain ramp): the variance per
 // sample comes from `blocks` block means of the residuals, as in
 // block_standard_error. The residuals are taken about a least-squares
-// parabola, so that a curve's bend is not counted as noise. Needs >= 3
-// blocks of points; NaN otherwise.
+// parabola, so that a curve's bend is not counted as noise. Needs
+// blocks >= 4 and at least 3 points per block; NaN otherwise.
 double slope_block_error(const std::vector<double>& x, const std::vector<double>& y,
                          int blocks = 10);
 
