@@ -148,8 +148,12 @@ config::StageKindSpec ConcurrentStage::spec() {
        "Largest change of the total momentum over the run, over M c (M the body's mass, c its "
        "bar speed)"},
       {"interface_opening", OutputSpec::Shape::kScalar, "Å",
-       "Interface opening at the end (wave.opening)"},
-      {"max_interface_opening", OutputSpec::Shape::kScalar, "Å", "Its largest value"},
+       "How far the wave.opening planes moved apart since the start, at the end (negative: "
+       "nearer)"},
+      {"max_interface_opening", OutputSpec::Shape::kScalar, "Å",
+       "The most they were apart (0 if never)"},
+      {"max_interface_closing", OutputSpec::Shape::kScalar, "Å",
+       "The most they came nearer (0 if never)"},
       {"steps_per_second", OutputSpec::Shape::kScalar, "1/s", "Speed of the run"},
       {"youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
        "Slope of stress against strain up to tension.fit_strain"},

@@ -238,6 +238,23 @@ class DpdPartTrajectory {
   std::array<double, 3> edges_{};
 };
 
+// The planes' displacement jump since the start: at the end, its largest
+// opening (the planes apart) and its largest closing (the planes nearer,
+// which the compressive front does to any two planes, interface or not).
+void report_opening(StageResults& r, const std::vector<double>& t,
+                    const std::vector<double>& jump) {
+  r.add_column("interface", "time", "ps", t);
+  r.add_column("interface", "opening", "Å", jump);
+  double apart = 0.0, nearer = 0.0;
+  for (const double o : jump) {
+    apart = std::max(apart, o - jump.front());
+    nearer = std::max(nearer, jump.front() - o);
+  }
+  r.add_scalar("interface_opening", jump.back() - jump.front(), "Å");
+  r.add_scalar("max_interface_opening", apart, "Å");
+  r.add_scalar("max_interface_closing", nearer, "Å");
+}
+
 }  // namespace
 
 void ConcurrentStage::run(StageContext& ctx) {
@@ -319,9 +336,10 @@ void ConcurrentStage::run(StageContext& ctx) {
       tension->add(static_cast<double>(n) * cp.time_step, w, sv, f[0], f[1]);
     }
     if (cp.opening) {
-      const double mine = probes.displacement(cp.opening->first, v);
+      const auto mine = probes.opening_moments(v);
       opening_t.push_back(static_cast<double>(n) * cp.time_step);
-      opening.push_back(coupling::swap_scalar(inter, ctx.comm(), mine) - mine);
+      opening.push_back(coupling::ConcurrentProbes::opening(
+          mine, coupling::swap_values(inter, ctx.comm(), mine)));
     }
   };
 
@@ -359,14 +377,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   const double rho = 4.0 * material["mass"].as<double>() / (a * a * a);
   const double c = std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
   r.add_scalar("momentum_change", worst_dp / (body_mass * c), "1");
-  if (cp.opening && !opening.empty()) {
-    r.add_column("interface", "time", "ps", opening_t);
-    r.add_column("interface", "opening", "Å", opening);
-    r.add_scalar("interface_opening", opening.back() - opening.front(), "Å");
-    double most = 0.0;
-    for (const double o : opening) most = std::max(most, std::abs(o - opening.front()));
-    r.add_scalar("max_interface_opening", most, "Å");
-  }
+  if (cp.opening && !opening.empty()) report_opening(r, opening_t, opening);
   if (cp.steps > 0 && seconds > 0.0) {
     r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
   }

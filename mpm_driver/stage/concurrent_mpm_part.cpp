@@ -166,7 +166,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
       (void)coupling::swap_scalar(inter, ctx.comm(), sv / units::kBarPerEvPerA3);
     }
     if (cp.opening) {
-      (void)coupling::swap_scalar(inter, ctx.comm(), probes.displacement(cp.opening->second, v));
+      (void)coupling::swap_values(inter, ctx.comm(), probes.opening_moments(v));
     }
     double e = engine.solver().energy(engine.points()).stored;
     MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());

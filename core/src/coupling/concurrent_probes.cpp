@@ -92,16 +92,40 @@ double ConcurrentProbes::displacement(const std::string& group, const ParticleVi
   return displacement(mask_of(group), now);
 }
 
-double ConcurrentProbes::displacement(std::uint32_t mask, const ParticleView& now) const {
+// Mass, mass-weighted displacement and mass-weighted start along the axis,
+// over this side's ranks.
+std::array<double, 3> ConcurrentProbes::moments(std::uint32_t mask, const ParticleView& now) const {
   const auto a = static_cast<std::size_t>(p_.axis);
-  double m[2] = {0.0, 0.0};  // mass, mass-weighted displacement
+  std::array<double, 3> m{};
   for (std::size_t i = 0; i < now.count; ++i) {
     if ((now.groups[i] & mask) == 0) continue;
+    const double x0 = start_.at(now.id[i])[a];
     m[0] += now.mass[i];
-    m[1] += now.mass[i] * (now.x[i][a] - start_.at(now.id[i])[a]);
+    m[1] += now.mass[i] * (now.x[i][a] - x0);
+    m[2] += now.mass[i] * x0;
   }
-  sum_over(comm_, m, 2);
+  sum_over(comm_, m.data(), 3);
+  return m;
+}
+
+double ConcurrentProbes::displacement(std::uint32_t mask, const ParticleView& now) const {
+  const auto m = moments(mask, now);
   return m[0] > 0.0 ? m[1] / m[0] : std::nan("");
+}
+
+ConcurrentProbes::PlaneMoments ConcurrentProbes::opening_moments(const ParticleView& now) const {
+  if (!p_.opening) return {};
+  const auto d = moments(mask_of(p_.opening->first), now);
+  const auto m = moments(mask_of(p_.opening->second), now);
+  return {d[0], d[1], d[2], m[0], m[1], m[2]};
+}
+
+double ConcurrentProbes::opening(const PlaneMoments& mine, const PlaneMoments& theirs) {
+  PlaneMoments s{};
+  for (std::size_t k = 0; k < s.size(); ++k) s[k] = mine[k] + theirs[k];
+  if (s[0] <= 0.0 || s[3] <= 0.0) return std::nan("");
+  const double jump = s[4] / s[3] - s[1] / s[0];
+  return s[5] / s[3] > s[2] / s[0] ? jump : -jump;
 }
 
 void ConcurrentProbes::track(std::int64_t step, const ParticleView& now) {

@@ -4,16 +4,23 @@
 
 namespace pbms::coupling {
 
-double swap_scalar(MPI_Comm inter, MPI_Comm local, double mine) {
+void swap_values(MPI_Comm inter, MPI_Comm local, std::span<const double> mine,
+                 std::span<double> theirs) {
   int rank = 0;
   MPI_Comm_rank(local, &rank);
-  double theirs = 0.0;
+  const auto n = static_cast<int>(mine.size());
   if (rank == 0) {
-    mpi::check(MPI_Sendrecv(&mine, 1, MPI_DOUBLE, 0, 420, &theirs, 1, MPI_DOUBLE, 0, 420, inter,
-                            MPI_STATUS_IGNORE),
-               "MPI_Sendrecv (scalar across programs)");
+    mpi::check(MPI_Sendrecv(mine.data(), n, MPI_DOUBLE, 0, 420, theirs.data(), n, MPI_DOUBLE, 0,
+                            420, inter, MPI_STATUS_IGNORE),
+               "MPI_Sendrecv (values across programs)");
   }
-  mpi::check(MPI_Bcast(&theirs, 1, MPI_DOUBLE, 0, local), "MPI_Bcast (scalar across programs)");
+  mpi::check(MPI_Bcast(theirs.data(), n, MPI_DOUBLE, 0, local),
+             "MPI_Bcast (values across programs)");
+}
+
+double swap_scalar(MPI_Comm inter, MPI_Comm local, double mine) {
+  double theirs = 0.0;
+  swap_values(inter, local, {&mine, 1}, {&theirs, 1});
   return theirs;
 }
 

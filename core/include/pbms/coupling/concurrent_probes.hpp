@@ -52,6 +52,16 @@ class ConcurrentProbes {
   // The displacement of a group's centre of mass along the axis since the
   // start, NaN when this side has none of it.
   [[nodiscard]] double displacement(const std::string& group, const ParticleView& now) const;
+  // This side's share of the two opening planes (wave.opening: the DPD
+  // plane, then the MPM plane): each plane's mass, and its mass-weighted
+  // start and displacement along the axis. The two sides' shares add up
+  // to the planes whichever solver holds them, so a body run by one solver
+  // reports the jump across the same planes.
+  using PlaneMoments = std::array<double, 6>;
+  [[nodiscard]] PlaneMoments opening_moments(const ParticleView& now) const;
+  // How far the planes have moved apart along the axis (negative: nearer),
+  // from both sides' shares; NaN while a plane has no particles.
+  [[nodiscard]] static double opening(const PlaneMoments& mine, const PlaneMoments& theirs);
 
   [[nodiscard]] double kinetic_energy() const { return kinetic_.empty() ? 0.0 : kinetic_.back(); }
   [[nodiscard]] const std::array<double, 3>& momentum() const { return momentum_; }
@@ -64,6 +74,7 @@ class ConcurrentProbes {
   };
   [[nodiscard]] std::uint32_t mask_of(const std::string& group) const;
   [[nodiscard]] double displacement(std::uint32_t mask, const ParticleView& now) const;
+  [[nodiscard]] std::array<double, 3> moments(std::uint32_t mask, const ParticleView& now) const;
   [[nodiscard]] double centre(std::uint32_t mask, const ParticleView& now) const;
   void profile(double t, const ParticleView& now);
 
