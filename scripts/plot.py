@@ -581,7 +581,9 @@ def plot_concurrent(stage, outdir):
         total = np.zeros_like(t)
         parts = [(dl, "kinetic_energy", "DPD kinetic"), (dl, "potential_energy", "DPD potential"),
                  (dl, "interface_pair_energy", "DPD-MPM interface pairs"),
-                 (ml, "kinetic_energy", "MPM kinetic"), (ml, "stored_energy", "MPM stored")]
+                 (dl, "internal_energy", "DPD internal"),
+                 (ml, "kinetic_energy", "MPM kinetic"), (ml, "stored_energy", "MPM stored"),
+                 (ml, "dissipated_energy", "MPM dissipated")]
         for table, col, name in parts:
             if col in table.columns and len(table[col]) == len(t):
                 e = table[col] - table[col][0]
@@ -598,6 +600,10 @@ def plot_concurrent(stage, outdir):
                 a2.plot(t, dl[col] + ml[col], lw=1.0, label=f"total {axis}")
         a2.set_xlabel(label("time", "ps"))
         a2.set_ylabel(label("momentum", "g/mol Å/ps"))
+        if "mass" in dl.columns and "mass" in ml.columns and len(ml["mass"]) == len(t):
+            m = dl["mass"] + ml["mass"]
+            a2.set_title(f"total mass {m[0]:.6g} g/mol, largest change {np.max(np.abs(m - m[0])):.3g}",
+                         fontsize=9)
         a2.grid(alpha=0.3)
         a2.legend(fontsize=7)
         written += finish(fig, os.path.join(outdir, f"{safe(stage.name)}_ledger.png"))

@@ -160,8 +160,29 @@ config::StageKindSpec ConcurrentStage::spec() {
       {"max_stress", OutputSpec::Shape::kScalar, "GPa", "Largest mean axial stress (tension)"},
       {"tension_curve", OutputSpec::Shape::kTable, "",
        "Strain, mean axial stress and grip stress (tension)"},
-      {"dpd_ledger", OutputSpec::Shape::kTable, "", "DPD kinetic energy and momentum"},
-      {"mpm_ledger", OutputSpec::Shape::kTable, "", "MPM kinetic and stored energy and momentum"},
+      {"dpd_ledger", OutputSpec::Shape::kTable, "",
+       "Every sample, the DPD part's mass, momentum, kinetic, pair (potential_energy), internal "
+       "and DPD-MPM interface pair energy"},
+      {"mpm_ledger", OutputSpec::Shape::kTable, "",
+       "Every sample, the MPM part's mass, momentum, kinetic, stored and dissipated energy"},
+      {"interface", OutputSpec::Shape::kTable, "", "The wave.opening planes' jump against time"},
+      {"dpd_exchange", OutputSpec::Shape::kTable, "",
+       "Per dpd_driver rank: messages, bytes sent and received, seconds packing and waiting, of "
+       "the nodal sums (nodal_) and of the partners and their reactions (partner_)"},
+      {"mpm_exchange", OutputSpec::Shape::kTable, "", "The same per mpm_driver rank"},
+      {"nodal_sum_bytes_per_step", OutputSpec::Shape::kScalar, "1",
+       "Bytes the DPD part sent in the nodal sums a step, all its ranks"},
+      {"partner_bytes_per_step", OutputSpec::Shape::kScalar, "1",
+       "Bytes the DPD part received as partners a step, all its ranks"},
+      {"dpd_exchange_bytes_per_step", OutputSpec::Shape::kScalar, "1",
+       "Bytes the DPD part sent and received across the programs a step, all its ranks"},
+      {"dpd_exchange_messages_per_step", OutputSpec::Shape::kScalar, "1",
+       "Messages the DPD part sent across the programs a step, all its ranks"},
+      {"dpd_exchange_waiting_fraction", OutputSpec::Shape::kScalar, "1",
+       "The longest any DPD rank waited for the other program, over the stepping time"},
+      {"mpm_exchange_bytes_per_step", OutputSpec::Shape::kScalar, "1", "The same, MPM part"},
+      {"mpm_exchange_messages_per_step", OutputSpec::Shape::kScalar, "1", "The same, MPM part"},
+      {"mpm_exchange_waiting_fraction", OutputSpec::Shape::kScalar, "1", "The same, MPM part"},
   };
   return s;
 }

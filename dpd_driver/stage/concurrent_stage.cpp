@@ -21,6 +21,7 @@
 #include "pbms/coupling/concurrent_probes.hpp"
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/cross_program_link.hpp"
+#include "pbms/coupling/exchange_report.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
@@ -305,7 +306,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   const double body_mass =
       coupling::swap_scalar(inter, ctx.comm(), dpd_count * engine.particles().mass_per_type[0]) +
       dpd_count * engine.particles().mass_per_type[0];
-  std::vector<double> opening_t, opening, potential, interface_energy;
+  std::vector<double> opening_t, opening, potential, interface_energy, internal, mass;
   std::array<double, 3> p0{};
   double worst_dp = 0.0;
   auto sample = [&](std::int64_t n) {
@@ -317,6 +318,8 @@ void ConcurrentStage::run(StageContext& ctx) {
     const double own = engine.pair_energy_without_partners();  // and one more
     potential.push_back(own);
     interface_energy.push_back(thermo.potential - own);
+    internal.push_back(thermo.internal);
+    mass.push_back(probes.mass());
     std::array<double, 3> total{};
     for (std::size_t a = 0; a < 3; ++a) {
       total[a] =
@@ -384,6 +387,10 @@ void ConcurrentStage::run(StageContext& ctx) {
   probes.report(r, "dpd");
   r.add_column("dpd_ledger", "potential_energy", "eV", potential);
   r.add_column("dpd_ledger", "interface_pair_energy", "eV", interface_energy);
+  r.add_column("dpd_ledger", "internal_energy", "eV", internal);
+  r.add_column("dpd_ledger", "mass", "g/mol", mass);
+  coupling::report_exchanges(r, ctx.comm(), "dpd", link.nodal_profile(), link.partner_profile(),
+                             cp.steps, seconds);
   if (tension) tension->report(r);
   // Bytes the DPD part's ranks sent in the nodal sums and received as
   // partners, per step, summed over its ranks.

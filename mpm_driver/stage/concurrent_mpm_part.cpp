@@ -1,6 +1,7 @@
 #include "concurrent_mpm_part.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "pbms/coupling/concurrent_probes.hpp"
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/cross_program_link.hpp"
+#include "pbms/coupling/exchange_report.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/for_each_node.hpp"
@@ -139,7 +141,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   coupling::ConcurrentProbes probes(ctx.comm(), cp, groups, 0.5 * a, view_of(engine.points()));
   const double mass = static_cast<double>(engine.total_points()) * material["mass"].as<double>();
   (void)coupling::swap_scalar(inter, ctx.comm(), mass);
-  std::vector<double> stored;
+  std::vector<double> stored, dissipated, point_mass;
   auto sample = [&](std::int64_t n) {
     const auto v = view_of(engine.points());
     probes.sample(n, v);
@@ -168,9 +170,12 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     if (cp.opening) {
       (void)coupling::swap_values(inter, ctx.comm(), probes.opening_moments(v));
     }
-    double e = engine.solver().energy(engine.points()).stored;
-    MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());
-    stored.push_back(e);
+    const EnergySummary energy = engine.solver().energy(engine.points());
+    double e[2] = {energy.stored, energy.dissipated};
+    MPI_Allreduce(MPI_IN_PLACE, e, 2, MPI_DOUBLE, MPI_SUM, ctx.comm());
+    stored.push_back(e[0]);
+    dissipated.push_back(e[1]);
+    point_mass.push_back(probes.mass());
   };
   std::unique_ptr<GridFieldWriter> grid_out;
   std::unique_ptr<H5mdWriter> points_out;
@@ -188,6 +193,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   }
   probes.track(0, view_of(engine.points()));
   sample(0);
+  const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
     scheme.step();
@@ -198,6 +204,8 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
       write_points(*points_out, engine, n, static_cast<double>(n) * cp.time_step);
     }
   }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   auto& r = ctx.results();
   if (grid_out) {
     r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_particles.h5md").string());
@@ -206,6 +214,10 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   }
   probes.report(r, "mpm");
   r.add_column("mpm_ledger", "stored_energy", "eV", stored);
+  r.add_column("mpm_ledger", "dissipated_energy", "eV", dissipated);
+  r.add_column("mpm_ledger", "mass", "g/mol", point_mass);
+  coupling::report_exchanges(r, ctx.comm(), "mpm", link.nodal_profile(), link.partner_profile(),
+                             cp.steps, seconds);
 }
 
 }  // namespace pbms::mpm

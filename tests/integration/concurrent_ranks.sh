@@ -2,7 +2,9 @@ source "$(dirname "$0")/lib.sh"
 # A concurrent stage gives the same results on 1+1 and 2+2 ranks (dpd_driver
 # + mpm_driver): every summary value but the timings and the exchanged
 # bytes (more ranks, more messages) agrees to 1e-6
-# relative (summation order is all that changes).
+# relative (summation order is all that changes). The exchange profiles of
+# both programs balance: every byte one program's ranks sent, the other's
+# received.
 CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
 sed 's/launch: {dpd: 1, mpm: 2}/launch: {dpd: 1, mpm: 1}/; s/name: concurrent_small/name: r11/' "$CONFIG" > r11.yaml
 sed 's/launch: {dpd: 1, mpm: 2}/launch: {dpd: 2, mpm: 2}/; s/name: concurrent_small/name: r22/' "$CONFIG" > r22.yaml
@@ -14,12 +16,23 @@ a = yaml.safe_load(open("runs/r11/summary.yaml"))["stages"]["impact"]["results"]
 b = yaml.safe_load(open("runs/r22/summary.yaml"))["stages"]["impact"]["results"]
 bad = 0
 for key, r in a.items():
-    if key in ("steps_per_second", "nodal_sum_bytes_per_step", "partner_bytes_per_step") or not isinstance(r, dict) or "value" not in r:
+    if key in ("steps_per_second", "nodal_sum_bytes_per_step", "partner_bytes_per_step") or "_exchange_" in key or not isinstance(r, dict) or "value" not in r:
         continue
     x, y = r["value"], b[key]["value"]
     same = (math.isnan(x) and math.isnan(y)) or abs(x - y) <= 1e-6 * max(abs(x), abs(y), 1e-12)
     bad += not same
     print(f"{'ok  ' if same else 'FAIL'} {key}: 1+1 {x:.9g}, 2+2 {y:.9g}")
+# The exchange profiles: what one program's ranks sent, the other's received.
+import h5py
+for run in ("r11", "r22"):
+    with h5py.File(f"runs/{run}/results.h5", "r") as f:
+        d, m = f["impact"]["dpd_exchange"], f["impact"]["mpm_exchange"]
+        for sender, receiver, kind in ((d, m, "nodal"), (m, d, "nodal"), (m, d, "partner"), (d, m, "partner")):
+            sent, got = sender[f"{kind}_bytes_sent"][:].sum(), receiver[f"{kind}_bytes_received"][:].sum()
+            same = sent == got and sent > 0
+            bad += not same
+            print(f"{'ok  ' if same else 'FAIL'} {run} {kind}: {sent:.0f} bytes sent by {sender.name.split('/')[-1]}'s "
+                  f"{len(sender['rank'])} ranks, {got:.0f} received by {receiver.name.split('/')[-1]}'s {len(receiver['rank'])}")
 sys.exit(1 if bad else 0)
 PYEOF
 echo "1 passed, 0 failed"

@@ -136,13 +136,15 @@ void ConcurrentProbes::track(std::int64_t step, const ParticleView& now) {
 }
 
 void ConcurrentProbes::sample(std::int64_t step, const ParticleView& now) {
-  double s[4] = {0.0, 0.0, 0.0, 0.0};  // 2 E_kin / mvv2e, momentum
+  double s[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // 2 E_kin / mvv2e, momentum, mass
   for (std::size_t i = 0; i < now.count; ++i) {
+    s[4] += now.mass[i];
     const Vec3& v = now.v[i];
     s[0] += now.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (std::size_t a = 0; a < 3; ++a) s[a + 1] += now.mass[i] * v[a];
   }
-  sum_over(comm_, s, 4);
+  sum_over(comm_, s, 5);
+  mass_ = s[4];
   const double t = static_cast<double>(step) * p_.time_step;
   sample_t_.push_back(t);
   kinetic_.push_back(0.5 * s[0] * units::kMvv2e);

@@ -65,6 +65,8 @@ class ConcurrentProbes {
 
   [[nodiscard]] double kinetic_energy() const { return kinetic_.empty() ? 0.0 : kinetic_.back(); }
   [[nodiscard]] const std::array<double, 3>& momentum() const { return momentum_; }
+  // This side's mass at the last sample, g/mol.
+  [[nodiscard]] double mass() const { return mass_; }
   // Adds `<prefix>_` scalars and tables.
   void report(StageResults& r, const std::string& prefix) const;
 
@@ -90,6 +92,7 @@ class ConcurrentProbes {
   std::vector<double> track_t_;
   std::vector<double> sample_t_, kinetic_, px_, py_, pz_;
   std::array<double, 3> momentum_{};
+  double mass_ = 0.0;
   std::vector<double> profile_t_;
   std::vector<std::vector<double>> profiles_;
 };
