@@ -78,7 +78,8 @@ Param continuum() {
 Param wave() {
   const Param speed = Param::map(
       "speed",
-      {Param::identifier("name", "Summary key suffix: wave_speed_<name>").require(),
+      {Param::identifier("name", "Summary key suffix: wave_speed_<name>, front_speed_<name>")
+           .require(),
        Param::identifier("near_slab", "Group nearer the impact face").require(),
        Param::identifier("far_slab", "Group farther away, in the same solver's part").require()},
       "A wave speed between two slabs of one solver's particles");
@@ -89,14 +90,23 @@ Param wave() {
                    "A slab has moved when its centre of mass has moved this far")
            .def(0.25)
            .above(0),
+       Param::real("smoothing", Dimension::kTime,
+                   "Mid-amplitude arrival: a slab's velocity is a running mean over this time")
+           .def(0.05)
+           .above(0),
+       Param::real("window", Dimension::kTime,
+                   "Mid-amplitude arrival: the front's top is the largest smoothed velocity "
+                   "within this time of the first motion")
+           .def(0.1)
+           .above(0),
        Param::list_of("speeds", speed, "Slab pairs").def(std::vector<std::string>{}),
        Param::map(
            "opening",
            {Param::identifier("dpd_plane", "The DPD lattice plane next to the interface").require(),
             Param::identifier("mpm_plane", "The MPM lattice plane next to the interface")
                 .require()},
-           "The interface opening: the mpm plane's displacement along the axis minus "
-           "the dpd plane's")},
+           "The interface opening: how far the two planes have moved apart along the axis "
+           "since the start, each plane's particles counted whichever solver holds them")},
       "Wave speeds in each part and the interface opening");
 }
 

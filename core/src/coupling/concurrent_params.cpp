@@ -68,6 +68,8 @@ ConcurrentParams concurrent_params(const YAML::Node& p) {
   if (const YAML::Node w = p["wave"]) {
     c.axis = axis_index(w["axis"].as<std::string>());
     c.threshold = w["threshold"].as<double>();
+    c.smoothing = w["smoothing"].as<double>();
+    c.window = w["window"].as<double>();
     for (const auto& s : w["speeds"]) {
       c.speeds.push_back({s["name"].as<std::string>(), s["near_slab"].as<std::string>(),
                           s["far_slab"].as<std::string>()});

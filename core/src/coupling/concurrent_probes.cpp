@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "pbms/analysis/first_crossing.hpp"
+#include "pbms/analysis/front_arrival.hpp"
 #include "pbms/mpi/comm.hpp"
 #include "pbms/units.hpp"
 
@@ -200,10 +201,17 @@ void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const 
     const double tf = analysis::first_crossing(track_t_, sf, p_.threshold);
     r.add_scalar("first_motion_" + s.near_slab, tn, "ps");
     r.add_scalar("first_motion_" + s.far_slab, tf, "ps");
+    // Å/ps is 100 m/s.
+    const double distance = std::abs(tracked_at_[jf] - tracked_at_[in]) * 100.0;
+    const auto fn = analysis::mid_amplitude_arrival(track_t_, sn, tn, p_.smoothing, p_.window);
+    const auto ff = analysis::mid_amplitude_arrival(track_t_, sf, tf, p_.smoothing, p_.window);
+    if (ff.time > fn.time) {
+      r.add_scalar("front_" + s.near_slab, fn.time, "ps");
+      r.add_scalar("front_" + s.far_slab, ff.time, "ps");
+      r.add_scalar("front_speed_" + s.name, distance / (ff.time - fn.time), "m/s");
+    }
     if (tf > tn) {
-      // Å/ps is 100 m/s.
-      const double distance = std::abs(tracked_at_[jf] - tracked_at_[in]);
-      r.add_scalar("wave_speed_" + s.name, distance / (tf - tn) * 100.0, "m/s");
+      r.add_scalar("wave_speed_" + s.name, distance / (tf - tn), "m/s");
     } else {
       r.attributes["wave_speed_" + s.name] = fmt::format(
           "not measured: the wave did not reach both slabs (first motion {:.4g} and {:.4g} ps)", tn,

@@ -70,8 +70,10 @@ struct ConcurrentParams {
   std::vector<HeldGroup> held;
   double time_step = 0.0;  // ps
   std::int64_t steps = 0, sample_every = 1, particles_every = 0, profile_every = 0;
-  int axis = 0;            // of the wave and the interface opening
-  double threshold = 0.0;  // Å, a slab's first motion
+  int axis = 0;             // of the wave and the interface opening
+  double threshold = 0.0;   // Å, a slab's first motion
+  double smoothing = 0.05;  // ps, mid-amplitude arrival: the velocity's running mean
+  double window = 0.1;      // ps, mid-amplitude arrival: the top's distance from first motion
   std::vector<SpeedProbe> speeds;
   // The lattice planes on either side of the interface (groups), whose
   // displacement jump is the interface opening.
