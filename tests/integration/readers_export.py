@@ -89,10 +89,15 @@ def main():
     print(out.stdout + out.stderr, end="")
     check(out.returncode == 0, f"./pbms export exited {out.returncode}")
     files = sorted(glob.glob(os.path.join(run, "**", "*.h5md"), recursive=True))
-    solvers = {"md": "md", "dpd": "dpd", "mpm_consistent": "mpm", "mpm_metal": "mpm"}
+    solvers = {"md": "md", "md_tension": "md", "dpd": "dpd", "mpm_consistent": "mpm",
+               "mpm_metal": "mpm"}
     check(len(files) >= 4, f"{len(files)} H5MD files to export")
     for path in files:
-        check_file(path, solvers.get(os.path.basename(os.path.dirname(path)), "?"))
+        # A concurrent stage has one file per part: dpd_particles, mpm_particles.
+        part = os.path.basename(path).split("_")[0]
+        solver = part if part in ("dpd", "mpm") else solvers.get(
+            os.path.basename(os.path.dirname(path)), "?")
+        check_file(path, solver)
     with tempfile.TemporaryDirectory() as nothing:
         out = subprocess.run([os.path.join(root, "pbms"), "export", nothing], capture_output=True,
                              text=True)

@@ -5,6 +5,7 @@ source "$(dirname "$0")/lib.sh"
 rm -rf runs/readers
 "$PBMS" run "$ROOT/tests/integration/configs/readers.yaml" > out.txt 2>&1 || { cat out.txt; fail "run"; }
 for f in md/p0.h5md dpd/particles.h5md mpm_consistent/particles.h5md mpm_metal/particles.h5md \
+         md_tension/tension.h5md concurrent/dpd_particles.h5md concurrent/mpm_particles.h5md \
          mpm_consistent/grid.xdmf mpm_metal/grid.xdmf; do
   [ -f "runs/readers/$f" ] || fail "no runs/readers/$f"
 done
