@@ -196,7 +196,11 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
-    scheme.step();
+    try {
+      scheme.step();
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kMpm)));
+    }
     probes.track(n, view_of(engine.points()));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
     if (grid_out && (n % cp.particles_every == 0 || n == cp.steps)) {

@@ -39,7 +39,7 @@ kill_one() {  # PROGRAM WORLD_RANK EXPECTED_PROGRAM_RANK
   grep -q "step [1-9]" err.txt || fail "message does not name the step"
 }
 
-fails_with() {  # NAME SED_EXPRESSION EXPECTED_TEXT
+fails_with() {  # NAME SED_EXPRESSION EXPECTED_TEXT REGIONS_TEXT
   local name=$1 edit=$2 expect=$3 rc=0 start elapsed
   sed "$edit; s/name: concurrent_small/name: $name/" "$CONFIG" > "$name.yaml"
   start=$(date +%s.%N)
@@ -50,11 +50,14 @@ fails_with() {  # NAME SED_EXPRESSION EXPECTED_TEXT
   [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "$name: exit code $rc (124: it hung)"
   grep -q "$expect" err.txt || fail "$name: message does not say '$expect'"
   grep -q "step [0-9]" err.txt || fail "$name: message does not name the step"
+  grep -q "$4" err.txt || fail "$name: message does not name the part's regions ('$4')"
 }
 
 # World ranks: 0 coupler, 1 dpd_driver, 2 and 3 mpm_driver.
 kill_one mpm_driver 3 1
 kill_one dpd_driver 1 0
-fails_with mpm_unstable 's/youngs_modulus: 91 GPa/youngs_modulus: 91000000 GPa/' "mpm_driver rank [01] in stage 'impact' at step"
-fails_with dpd_off_grid 's/velocity: \[5, 0, 0\]/velocity: [-3000, 0, 0]/' "dpd_driver rank 0 in stage 'impact' at step"
+fails_with mpm_unstable 's/youngs_modulus: 91 GPa/youngs_modulus: 91000000 GPa/' "mpm_driver rank [01] in stage 'impact' at step" \
+  "in the MPM part (region 'right')"
+fails_with dpd_off_grid 's/velocity: \[5, 0, 0\]/velocity: [-3000, 0, 0]/' "dpd_driver rank 0 in stage 'impact' at step" \
+  "in the DPD part (region 'left' and particles in no region)"
 echo "1 passed, 0 failed"

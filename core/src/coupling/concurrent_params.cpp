@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "pbms/geometry/region_yaml.hpp"
 
 namespace pbms::coupling {
@@ -24,6 +27,17 @@ Solver ConcurrentParams::solver_at(const geometry::Vec3& x) const {
     if (r.region->contains(x)) return r.solver;
   }
   return Solver::kDpd;
+}
+
+std::string ConcurrentParams::part(Solver s) const {
+  std::vector<std::string> names;
+  for (const auto& r : regions) {
+    if (r.solver == s) names.push_back(fmt::format("'{}'", r.name));
+  }
+  const bool dpd = s == Solver::kDpd;
+  return fmt::format("the {} part ({} {}{})", dpd ? "DPD" : "MPM",
+                     names.size() == 1 ? "region" : "regions", fmt::join(names, ", "),
+                     dpd ? " and particles in no region" : "");
 }
 
 ConcurrentParams concurrent_params(const YAML::Node& p) {

@@ -83,6 +83,9 @@ struct ConcurrentParams {
   // The solver of a particle at x: the first region holding it, DPD when
   // none does (a flyer outside the body's regions).
   [[nodiscard]] Solver solver_at(const geometry::Vec3& x) const;
+  // Which part of the body a solver advances, for messages: "the MPM part
+  // (region 'right')".
+  [[nodiscard]] std::string part(Solver s) const;
 };
 
 // Reads a `concurrent` stage's validated parameters (metal units).
