@@ -359,6 +359,8 @@ void ConcurrentStage::run(StageContext& ctx) {
     set_current_step(n);
     try {
       scheme.step();
+    } catch (const StageFailure& e) {
+      throw StageFailure(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kDpd)));
     } catch (const Error& e) {
       throw Error(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kDpd)));
     }

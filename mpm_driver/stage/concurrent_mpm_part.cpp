@@ -198,6 +198,8 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     set_current_step(n);
     try {
       scheme.step();
+    } catch (const StageFailure& e) {
+      throw StageFailure(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kMpm)));
     } catch (const Error& e) {
       throw Error(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kMpm)));
     }

@@ -18,7 +18,12 @@ a = yaml.safe_load(open("runs/r11/summary.yaml"))["stages"]["impact"]["results"]
 bad = 0
 for other, label in (("r22", "2+2"), ("r13", "1+3")):
     b = yaml.safe_load(open(f"runs/{other}/summary.yaml"))["stages"]["impact"]["results"]
-    for key, r in a.items():
+    for key in set(a) | set(b):
+        r = a.get(key, {"value": float("nan")})
+        if key not in b:
+            bad += 1
+            print(f"FAIL {key}: 1+1 only")
+            continue
         if key in ("steps_per_second", "nodal_sum_bytes_per_step", "partner_bytes_per_step") or "_exchange_" in key or not isinstance(r, dict) or "value" not in r:
             continue
         x, y = r["value"], b[key]["value"]

@@ -25,6 +25,10 @@ untreated = value("tension_4A_untreated", "max_interface_opening")
 treated = value("tension_4A", "max_interface_opening")
 check(untreated > 3.0, f"4 Å grid, no treatment: the rod separates at the interface (opening up to {untreated:.2f} Å)")
 check(treated < 0.5, f"4 Å grid, momentum-conserving interface: the opening stays at {treated:.2f} Å or less")
+# Nor may the planes be pushed into each other.
+for stage in ("tension", "tension_4A"):
+    closing = value(stage, "max_interface_closing")
+    check(closing < 0.5, f"{stage}: the planes come nearer by {closing:.2f} Å at most (below 0.5 Å)")
 checks.exit()
 PYEOF
 echo "1 passed, 0 failed"

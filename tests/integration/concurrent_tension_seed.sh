@@ -21,6 +21,8 @@ print(f"info untreated {e_u:.1f} GPa, all MPM {e_m:.1f} GPa ({100 * (e_m / e_d -
 treated = value("tension", "max_interface_opening")
 untreated = value("tension_untreated", "max_interface_opening")
 check(treated < 1.0, f"momentum-conserving interface: the opening stays at {treated:.2f} Å or less")
+closing = value("tension", "max_interface_closing")
+check(closing < 1.0, f"momentum-conserving interface: the planes come nearer by {closing:.2f} Å at most")
 check(untreated > 5.0, f"no treatment: the rod separates at an interface (opening up to {untreated:.2f} Å)")
 for png in ("tension_curves.png", "concurrent_snapshots.png"):
     check(os.path.isfile(os.path.join("runs", "concurrent_tension", png)), f"{png} written")

@@ -35,6 +35,7 @@ std::string ConcurrentParams::part(Solver s) const {
     if (r.solver == s) names.push_back(fmt::format("'{}'", r.name));
   }
   const bool dpd = s == Solver::kDpd;
+  if (names.empty()) return fmt::format("the {} part", dpd ? "DPD" : "MPM");
   return fmt::format("the {} part ({} {}{})", dpd ? "DPD" : "MPM",
                      names.size() == 1 ? "region" : "regions", fmt::join(names, ", "),
                      dpd ? " and particles in no region" : "");

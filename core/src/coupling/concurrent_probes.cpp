@@ -209,6 +209,10 @@ void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const 
       r.add_scalar("front_" + s.near_slab, fn.time, "ps");
       r.add_scalar("front_" + s.far_slab, ff.time, "ps");
       r.add_scalar("front_speed_" + s.name, distance / (ff.time - fn.time), "m/s");
+    } else {
+      r.attributes["front_speed_" + s.name] =
+          fmt::format("not measured: no mid-amplitude arrival at both slabs ({:.4g} and {:.4g} ps)",
+                      fn.time, ff.time);
     }
     if (tf > tn) {
       r.add_scalar("wave_speed_" + s.name, distance / (tf - tn), "m/s");

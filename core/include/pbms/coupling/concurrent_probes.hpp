@@ -54,7 +54,7 @@ class ConcurrentProbes {
   [[nodiscard]] double displacement(const std::string& group, const ParticleView& now) const;
   // This side's share of the two opening planes (wave.opening: the DPD
   // plane, then the MPM plane): each plane's mass, and its mass-weighted
-  // start and displacement along the axis. The two sides' shares add up
+  // displacement and start along the axis. The two sides' shares add up
   // to the planes whichever solver holds them, so a body run by one solver
   // reports the jump across the same planes.
   using PlaneMoments = std::array<double, 6>;
