@@ -357,13 +357,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
-    try {
-      scheme.step();
-    } catch (const StageFailure& e) {
-      throw StageFailure(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kDpd)));
-    } catch (const Error& e) {
-      throw Error(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kDpd)));
-    }
+    scheme.step_naming(cp.part(coupling::Solver::kDpd));
     probes.track(n, view.view(engine));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
     if (trajectory && (n % cp.particles_every == 0 || n == cp.steps)) {

@@ -196,13 +196,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
-    try {
-      scheme.step();
-    } catch (const StageFailure& e) {
-      throw StageFailure(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kMpm)));
-    } catch (const Error& e) {
-      throw Error(fmt::format("{}, in {}", e.what(), cp.part(coupling::Solver::kMpm)));
-    }
+    scheme.step_naming(cp.part(coupling::Solver::kMpm));
     probes.track(n, view_of(engine.points()));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
     if (grid_out && (n % cp.particles_every == 0 || n == cp.steps)) {

@@ -1,5 +1,9 @@
 #include "pbms/coupling/coupling_scheme.hpp"
 
+#include <fmt/format.h>
+
+#include "pbms/error.hpp"
+
 namespace pbms::coupling {
 
 CouplingScheme::CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link,
@@ -15,6 +19,16 @@ void CouplingScheme::step() {
   for (GridSide* s : sides_) s->update_and_map_back();
   link_.sum_nodes(lanes::kMomentum, lanes::kRemappedMomentum);
   for (GridSide* s : sides_) s->finish_step();
+}
+
+void CouplingScheme::step_naming(const std::string& part) {
+  try {
+    step();
+  } catch (const StageFailure& e) {
+    throw StageFailure(fmt::format("{}, in {}", e.what(), part));
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}, in {}", e.what(), part));
+  }
 }
 
 }  // namespace pbms::coupling

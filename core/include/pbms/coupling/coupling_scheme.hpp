@@ -5,6 +5,7 @@
 // and the same order.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "pbms/coupling/coupling_link.hpp"
@@ -20,6 +21,9 @@ class CouplingScheme {
 
   // One step. Collective over both sides' ranks.
   void step();
+  // The same, adding `part` (which part of the body this process advances)
+  // to the message of a step that fails, keeping the failure's type.
+  void step_naming(const std::string& part);
 
   [[nodiscard]] InterfaceTreatment treatment() const { return treatment_; }
 
