@@ -4,18 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <optional>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "dpd_model.hpp"
-#include "engine/concurrent_dpd_side.hpp"
+#include "dpd_part_of_body.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
-#include "kernels/periodic_wrap.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
@@ -29,94 +26,6 @@
 
 namespace pbms::dpd {
 namespace {
-
-using coupling::ConcurrentParams;
-using coupling::Solver;
-
-// id, x, v, mass, group bits: what mpm_driver gets of each of its points.
-constexpr std::size_t kRowWidth = 9;
-
-struct SplitBody {
-  DpdParticles dpd;
-  std::vector<double> mpm_rows;
-};
-
-SplitBody split_body(const DpdParticles& all, const ConcurrentParams& cp) {
-  SplitBody s;
-  s.dpd.mass_per_type = all.mass_per_type;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (cp.solver_at(all.x[i]) == Solver::kMpm) {
-      s.mpm_rows.insert(s.mpm_rows.end(), {static_cast<double>(all.id[i]), all.x[i][0], all.x[i][1],
-                                           all.x[i][2], all.v[i][0], all.v[i][1], all.v[i][2],
-                                           all.mass(i), static_cast<double>(all.group_mask[i])});
-      continue;
-    }
-    s.dpd.add(all.id[i], all.type[i], all.x[i], all.v[i]);
-    s.dpd.image.back() = all.image[i];
-    s.dpd.internal_energy.back() = all.internal_energy[i];
-    s.dpd.group_mask.back() = all.group_mask[i];
-  }
-  return s;
-}
-
-// The cells a set of positions touches, grown by `margin`, as nodes.
-grid::NodeBox nodes_around(const std::vector<Vec3>& x, const grid::RegularGrid& g, double margin) {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  for (const auto& p : x) {
-    for (std::size_t a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], p[a]);
-      hi[a] = std::max(hi[a], p[a]);
-    }
-  }
-  grid::NodeBox b;
-  if (x.empty()) return b;
-  for (std::size_t a = 0; a < 3; ++a) {
-    b.lo[a] = static_cast<int>(std::floor((lo[a] - margin - g.origin()[a]) / g.cell_size()));
-    b.hi[a] = static_cast<int>(std::floor((hi[a] + margin - g.origin()[a]) / g.cell_size())) + 2;
-  }
-  return b.intersected(g.node_box());
-}
-
-// The nodes both parts may deposit on. On periodic axes the whole axis:
-// the plan folds images onto their owners.
-grid::NodeBox interface_band(const SplitBody& body, const ConcurrentParams& cp, double reach) {
-  std::vector<Vec3> mpm;
-  for (std::size_t r = 0; r < body.mpm_rows.size(); r += kRowWidth) {
-    mpm.push_back({body.mpm_rows[r + 1], body.mpm_rows[r + 2], body.mpm_rows[r + 3]});
-  }
-  const double margin = cp.band_margin + reach;
-  grid::NodeBox band =
-      nodes_around(body.dpd.x, cp.grid, margin).intersected(nodes_around(mpm, cp.grid, margin));
-  for (std::size_t a = 0; a < 3; ++a) {
-    if (cp.periodic[a] && !band.empty()) {
-      band.lo[a] = 0;
-      band.hi[a] = cp.grid.cells()[a] + 1;
-    }
-  }
-  return band;
-}
-
-std::string header_yaml(const std::vector<std::string>& group_names, const grid::NodeBox& band,
-                        double reach, double skin) {
-  YAML::Node h;
-  h["groups"] = group_names;
-  h["band_lo"] = std::vector<int>(band.lo.begin(), band.lo.end());
-  h["band_hi"] = std::vector<int>(band.hi.begin(), band.hi.end());
-  h["reach"] = reach;
-  h["skin"] = skin;
-  YAML::Emitter out;
-  out << YAML::Flow << h;
-  return out.c_str();
-}
-
-DpdGridSettings grid_settings(const ConcurrentParams& cp, const DpdModel& model) {
-  DpdGridSettings s;
-  s.cell_size = cp.grid.cell_size();
-  s.flip = cp.flip;
-  for (const auto& m : model.group_motions) s.rigid.push_back({m.mask, m.velocity, m.free_body});
-  return s;
-}
 
 // The DPD part's owned particles, at unwrapped positions.
 struct DpdView {
@@ -135,17 +44,6 @@ struct DpdView {
   }
 };
 
-// The body's extent along an axis, outermost sites plus half a plane
-// spacing on each side (an fcc crystal of n cells spans n a).
-double body_extent(const DpdParticles& all, int axis, double plane) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const auto& x : all.x) {
-    lo = std::min(lo, x[static_cast<std::size_t>(axis)]);
-    hi = std::max(hi, x[static_cast<std::size_t>(axis)]);
-  }
-  return hi - lo + plane;
-}
-
 // Grip stress against strain, both grips held at their velocities.
 struct TensionSeries {
   coupling::TensionProbe probe;
@@ -154,18 +52,17 @@ struct TensionSeries {
   double length = 0.0, area = 0.0;
   std::vector<double> strain, stress, grip_stress;  // 1, GPa, GPa
 
-  TensionSeries(const coupling::TensionProbe& t, const DpdModel& m, const DpdParticles& all,
-                double plane)
-      : probe(t), left(m.group_mask(t.left_grip)), right(m.group_mask(t.right_grip)) {
+  TensionSeries(const coupling::TensionProbe& t, const DpdPartOfBody& part)
+      : probe(t), left(part.group_mask(t.left_grip)), right(part.group_mask(t.right_grip)) {
     const auto a = static_cast<std::size_t>(t.axis);
-    for (const auto& g : m.group_motions) {
+    for (const auto& g : part.group_motions()) {
       if (g.mask == left) pull_rate -= g.velocity[a];
       if (g.mask == right) pull_rate += g.velocity[a];
     }
-    length = body_extent(all, t.axis, plane);
+    length = part.body_extent()[a];
     area = 1.0;
-    for (int b = 0; b < 3; ++b) {
-      if (b != t.axis) area *= body_extent(all, b, plane);
+    for (std::size_t b = 0; b < 3; ++b) {
+      if (b != a) area *= part.body_extent()[b];
     }
   }
   // The body's mean axial stress from the DPD part's conservative virial
@@ -200,9 +97,9 @@ struct TensionSeries {
   }
 };
 
-std::vector<std::uint32_t> motion_masks(const DpdModel& m) {
+std::vector<std::uint32_t> motion_masks(const DpdPartOfBody& part) {
   std::vector<std::uint32_t> out;
-  for (const auto& g : m.group_motions) out.push_back(g.mask);
+  for (const auto& g : part.group_motions()) out.push_back(g.mask);
   return out;
 }
 
@@ -259,53 +156,34 @@ void report_opening(StageResults& r, const std::vector<double>& t,
 }  // namespace
 
 void ConcurrentStage::run(StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  const ConcurrentParams cp = coupling::concurrent_params(p);
   const MPI_Comm inter = ctx.peer("mpm_driver");
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': mpm_driver is not running", ctx.stage()));
   }
-  const YAML::Node material = ctx.material(cp.material);
-  DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
-  // A state from an earlier stage may lie a little outside the box on a
-  // periodic axis (positions wrap at list builds only); the regions see it
-  // inside.
-  wrap_periodic_axes(model.particles, model.box, model.particles.size());
-  const double plane = 0.5 * material["lattice_constant"].as<double>();
+  const YAML::Node material = ctx.material(ctx.params()["material"].as<std::string>());
+  DpdPartOfBody part(ctx.comm(), ctx.params(), material, ctx.seed(), ctx.stage());
+  const coupling::ConcurrentParams& cp = part.params();
   std::optional<TensionSeries> tension;
-  if (cp.tension) tension.emplace(*cp.tension, model, model.particles, plane);
-  SplitBody body = split_body(model.particles, cp);
-  // Partners within the list's reach, chosen afresh when either side has
-  // moved half the skin.
-  const double reach =
-      std::max(model.pair->cutoff(), model.settings.friction.cutoff) + model.settings.skin;
-  const grid::NodeBox band = interface_band(body, cp, reach);
-  coupling::hand_over(
-      inter, ctx.comm(),
-      {header_yaml(model.group_names, band, reach, model.settings.skin), body.mpm_rows});
-  const auto dpd_count = static_cast<double>(body.dpd.size());
-  const auto mpm_count = static_cast<double>(body.mpm_rows.size() / kRowWidth);
-
-  DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
-                   std::move(body.dpd));
-  engine.set_prescribed_groups(model.prescribed_mask);
-  engine.set_rigid_bodies(model.rigid_bodies);
-  DpdGridStep grid(engine, grid_settings(cp, model), cp.grid, cp.periodic);
-  ConcurrentDpdSide side(engine, grid, 0);
+  if (cp.tension) tension.emplace(*cp.tension, part);
+  coupling::hand_over(inter, ctx.comm(), part.handover());
+  DpdEngine& engine = part.engine();
+  DpdGridStep& grid = part.grid();
   int remote = 0;
   MPI_Comm_remote_size(inter, &remote);
   const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
-  coupling::CrossProgramLink link(inter, side, grid.partition(), theirs, band, reach);
-  coupling::CouplingScheme scheme({&side}, link, cp.interface);
+  coupling::CrossProgramLink link(inter, part.side(), grid.partition(), theirs, part.band(),
+                                  part.reach());
+  coupling::CouplingScheme scheme({&part.side()}, link, cp.interface);
 
   DpdView view;
-  coupling::ConcurrentProbes probes(ctx.comm(), cp, model.group_names,
+  coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),
                                     0.5 * material["lattice_constant"].as<double>(),
                                     view.view(engine));
   // The whole body's mass and momentum: this part's and mpm_driver's.
   const double body_mass =
-      coupling::swap_scalar(inter, ctx.comm(), dpd_count * engine.particles().mass_per_type[0]) +
-      dpd_count * engine.particles().mass_per_type[0];
+      coupling::swap_scalar(inter, ctx.comm(),
+                            part.dpd_particles() * engine.particles().mass_per_type[0]) +
+      part.dpd_particles() * engine.particles().mass_per_type[0];
   std::vector<double> opening_t, opening, potential, interface_energy, internal, mass;
   std::array<double, 3> p0{};
   double worst_dp = 0.0;
@@ -329,7 +207,7 @@ void ConcurrentStage::run(StageContext& ctx) {
     for (std::size_t a = 0; a < 3; ++a) worst_dp = std::max(worst_dp, std::abs(total[a] - p0[a]));
     if (tension) {
       const auto& reactions = grid.solver().point_velocity_reactions();
-      const auto masks = motion_masks(model);
+      const auto masks = motion_masks(part);
       const int a = tension->probe.axis;
       double f[2] = {coupling::grip_force(ctx.comm(), reactions, masks, tension->left, a),
                      coupling::grip_force(ctx.comm(), reactions, masks, tension->right, a)};
@@ -372,8 +250,8 @@ void ConcurrentStage::run(StageContext& ctx) {
   if (trajectory)
     r.files.push_back((std::filesystem::path(ctx.stage()) / "dpd_particles.h5md").string());
   r.attributes["interface"] = cp.interface_name;
-  r.add_scalar("dpd_particles", dpd_count, "1");
-  r.add_scalar("mpm_points", mpm_count, "1");
+  r.add_scalar("dpd_particles", part.dpd_particles(), "1");
+  r.add_scalar("mpm_points", part.mpm_points(), "1");
   r.add_scalar("dpd_temperature", engine.thermo(false).temperature, "K");
   // c = sqrt(E / rho) of the MPM material, bar Å³/(g/mol) to Å²/ps².
   const double a = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());

@@ -7,9 +7,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "engine/concurrent_mpm_side.hpp"
-#include "engine/mpm_engine.hpp"
-#include "materials/linear_elastic.hpp"
+#include "mpm_part_of_body.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
@@ -25,42 +23,6 @@
 
 namespace pbms::mpm {
 namespace {
-
-constexpr std::size_t kRowWidth = 9;  // id, x, v, mass, group bits
-
-// The handed-over points on the shared grid. Rigid and frozen groups with
-// points here are held at their velocity, as an MPM grip is.
-MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover& body,
-                  const std::vector<std::string>& groups, double volume) {
-  MpmModel m;
-  m.grid = cp.grid;
-  m.periodic = cp.periodic;
-  m.options.flip = cp.flip;
-  m.options.units = UnitSystem::metal();
-  // The DPD part's nodal update skips only empty nodes; the shared nodes
-  // must be updated alike.
-  m.options.small_mass_fraction = 0.0;
-  m.options.ddmp = cp.ddmp;
-  m.options.ddmp_face_vanishing = cp.ddmp;
-  m.group_names = groups;
-  for (std::size_t r = 0; r + kRowWidth <= body.rows.size(); r += kRowWidth) {
-    const double* d = &body.rows[r];
-    MaterialPointState s;
-    s.density = d[7] / volume;
-    m.points.add(std::llround(d[0]), {d[1], d[2], d[3]}, volume, s, 0,
-                 static_cast<std::uint32_t>(std::llround(d[8])));
-    m.points.v.back() = {d[4], d[5], d[6]};
-    m.points.mass.back() = d[7];
-  }
-  for (const auto& h : cp.held) {
-    PointVelocity pv;
-    pv.group_mask = m.group_mask(h.group);
-    pv.axis = {true, true, true};
-    pv.velocity = h.velocity;
-    m.bc.point_velocities.push_back(pv);
-  }
-  return m;
-}
 
 // The nodes this rank writes: mass and velocity as the MPM part holds them
 // after a step, both parts' sums on the interface band's nodes.
@@ -115,28 +77,17 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': dpd_driver is not running", ctx.stage()));
   }
-  const coupling::Handover body = coupling::take_over(inter, ctx.comm());
-  const YAML::Node header = YAML::Load(body.header);
-  const auto groups = header["groups"].as<std::vector<std::string>>();
-  const auto lo = header["band_lo"].as<std::vector<int>>();
-  const auto hi = header["band_hi"].as<std::vector<int>>();
-  const grid::NodeBox band{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
-  const double reach = header["reach"].as<double>();
   const YAML::Node material = ctx.material(cp.material);
-  const double a = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());
-  const double volume = a * a * a / 4.0;  // one fcc site
-
-  MaterialSet materials;
-  materials.models.push_back(std::make_unique<LinearElastic>(cp.youngs_modulus, cp.poisson_ratio));
-  materials.names.push_back("continuum");
-  materials.density.push_back(material["mass"].as<double>() / volume);
-  MpmEngine engine(ctx.comm(), model_of(cp, body, groups, volume), std::move(materials));
-  ConcurrentMpmSide side(engine, cp.time_step, header["skin"].as<double>());
+  MpmPartOfBody part(ctx.comm(), cp, coupling::take_over(inter, ctx.comm()), material);
+  MpmEngine& engine = part.engine();
+  const auto& groups = part.group_names();
+  const double a = part.lattice_constant();
   int remote = 0;
   MPI_Comm_remote_size(inter, &remote);
   const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
-  coupling::CrossProgramLink link(inter, side, engine.partition(), theirs, band, reach);
-  coupling::CouplingScheme scheme({&side}, link, cp.interface);
+  coupling::CrossProgramLink link(inter, part.side(), engine.partition(), theirs, part.band(),
+                                  part.reach());
+  coupling::CouplingScheme scheme({&part.side()}, link, cp.interface);
 
   coupling::ConcurrentProbes probes(ctx.comm(), cp, groups, 0.5 * a, view_of(engine.points()));
   const double mass = static_cast<double>(engine.total_points()) * material["mass"].as<double>();

@@ -1,0 +1,144 @@
+#include "dpd_part_of_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <yaml-cpp/yaml.h>
+
+#include "kernels/periodic_wrap.hpp"
+
+namespace pbms::dpd {
+namespace {
+
+using coupling::ConcurrentParams;
+using coupling::Solver;
+
+// id, x, v, mass, group bits: what mpm_driver gets of each of its points.
+constexpr std::size_t kRowWidth = 9;
+
+struct SplitBody {
+  DpdParticles dpd;
+  std::vector<double> mpm_rows;
+};
+
+SplitBody split_body(const DpdParticles& all, const ConcurrentParams& cp) {
+  SplitBody s;
+  s.dpd.mass_per_type = all.mass_per_type;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (cp.solver_at(all.x[i]) == Solver::kMpm) {
+      s.mpm_rows.insert(s.mpm_rows.end(), {static_cast<double>(all.id[i]), all.x[i][0], all.x[i][1],
+                                           all.x[i][2], all.v[i][0], all.v[i][1], all.v[i][2],
+                                           all.mass(i), static_cast<double>(all.group_mask[i])});
+      continue;
+    }
+    s.dpd.add(all.id[i], all.type[i], all.x[i], all.v[i]);
+    s.dpd.image.back() = all.image[i];
+    s.dpd.internal_energy.back() = all.internal_energy[i];
+    s.dpd.group_mask.back() = all.group_mask[i];
+  }
+  return s;
+}
+
+// The cells a set of positions touches, grown by `margin`, as nodes.
+grid::NodeBox nodes_around(const std::vector<Vec3>& x, const grid::RegularGrid& g, double margin) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  for (const auto& p : x) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  grid::NodeBox b;
+  if (x.empty()) return b;
+  for (std::size_t a = 0; a < 3; ++a) {
+    b.lo[a] = static_cast<int>(std::floor((lo[a] - margin - g.origin()[a]) / g.cell_size()));
+    b.hi[a] = static_cast<int>(std::floor((hi[a] + margin - g.origin()[a]) / g.cell_size())) + 2;
+  }
+  return b.intersected(g.node_box());
+}
+
+// The nodes both parts may deposit on. On periodic axes the whole axis:
+// the plan folds images onto their owners.
+grid::NodeBox interface_band(const SplitBody& body, const ConcurrentParams& cp, double reach) {
+  std::vector<Vec3> mpm;
+  for (std::size_t r = 0; r < body.mpm_rows.size(); r += kRowWidth) {
+    mpm.push_back({body.mpm_rows[r + 1], body.mpm_rows[r + 2], body.mpm_rows[r + 3]});
+  }
+  const double margin = cp.band_margin + reach;
+  grid::NodeBox band =
+      nodes_around(body.dpd.x, cp.grid, margin).intersected(nodes_around(mpm, cp.grid, margin));
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (cp.periodic[a] && !band.empty()) {
+      band.lo[a] = 0;
+      band.hi[a] = cp.grid.cells()[a] + 1;
+    }
+  }
+  return band;
+}
+
+std::string header_yaml(const std::vector<std::string>& group_names, const grid::NodeBox& band,
+                        double reach, double skin) {
+  YAML::Node h;
+  h["groups"] = group_names;
+  h["band_lo"] = std::vector<int>(band.lo.begin(), band.lo.end());
+  h["band_hi"] = std::vector<int>(band.hi.begin(), band.hi.end());
+  h["reach"] = reach;
+  h["skin"] = skin;
+  YAML::Emitter out;
+  out << YAML::Flow << h;
+  return out.c_str();
+}
+
+DpdGridSettings grid_settings(const ConcurrentParams& cp, const DpdModel& model) {
+  DpdGridSettings s;
+  s.cell_size = cp.grid.cell_size();
+  s.flip = cp.flip;
+  for (const auto& m : model.group_motions) s.rigid.push_back({m.mask, m.velocity, m.free_body});
+  return s;
+}
+
+// Outermost sites plus half a plane spacing on each side (an fcc crystal
+// of n cells spans n a).
+double extent_along(const DpdParticles& all, std::size_t axis, double plane) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& x : all.x) {
+    lo = std::min(lo, x[axis]);
+    hi = std::max(hi, x[axis]);
+  }
+  return hi - lo + plane;
+}
+
+}  // namespace
+
+DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML::Node& material,
+                             std::uint64_t seed, const std::string& stage)
+    : cp_(coupling::concurrent_params(params)),
+      model_(build_dpd_model(params, material, stage_seed(seed, stage), stage)) {
+  // A state from an earlier stage may lie a little outside the box on a
+  // periodic axis (positions wrap at list builds only); the regions see it
+  // inside.
+  wrap_periodic_axes(model_.particles, model_.box, model_.particles.size());
+  const double plane = 0.5 * material["lattice_constant"].as<double>();
+  for (std::size_t a = 0; a < 3; ++a) extent_[a] = extent_along(model_.particles, a, plane);
+  SplitBody body = split_body(model_.particles, cp_);
+  model_.particles = DpdParticles{};  // now in `body`
+  // Partners within the list's reach, chosen afresh when either side has
+  // moved half the skin.
+  reach_ = std::max(model_.pair->cutoff(), model_.settings.friction.cutoff) + model_.settings.skin;
+  band_ = interface_band(body, cp_, reach_);
+  dpd_count_ = static_cast<double>(body.dpd.size());
+  mpm_count_ = static_cast<double>(body.mpm_rows.size()) / static_cast<double>(kRowWidth);
+  handover_ = {header_yaml(model_.group_names, band_, reach_, model_.settings.skin),
+               std::move(body.mpm_rows)};
+  engine_ = std::make_unique<DpdEngine>(comm, model_.box, std::move(model_.pair), model_.settings,
+                                        std::move(body.dpd));
+  engine_->set_prescribed_groups(model_.prescribed_mask);
+  engine_->set_rigid_bodies(model_.rigid_bodies);
+  grid_ =
+      std::make_unique<DpdGridStep>(*engine_, grid_settings(cp_, model_), cp_.grid, cp_.periodic);
+  side_ = std::make_unique<ConcurrentDpdSide>(*engine_, *grid_, 0);
+}
+
+}  // namespace pbms::dpd

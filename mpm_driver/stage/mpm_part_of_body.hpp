@@ -1,0 +1,46 @@
+// The MPM part of a concurrent stage's body on the ranks of `comm`: the
+// points the DPD part handed over (coupling::Handover), as linear elastic
+// material points on the shared grid, and their coupling side. mpm_driver's
+// concurrent_mpm_part builds it on its ranks; the monolithic reference of
+// the split test (tests/tools/concurrent_monolithic.cpp) builds it on one
+// process beside the DPD part.
+#pragma once
+
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "engine/concurrent_mpm_side.hpp"
+#include "engine/mpm_engine.hpp"
+#include "pbms/coupling/body_handover.hpp"
+#include "pbms/coupling/concurrent_params.hpp"
+
+namespace pbms::mpm {
+
+class MpmPartOfBody {
+ public:
+  MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp, const coupling::Handover& body,
+                const YAML::Node& material);
+
+  [[nodiscard]] const std::vector<std::string>& group_names() const { return groups_; }
+  [[nodiscard]] const grid::NodeBox& band() const { return band_; }
+  [[nodiscard]] double reach() const { return reach_; }
+  // The fcc lattice constant the points sit on (Å).
+  [[nodiscard]] double lattice_constant() const { return lattice_constant_; }
+
+  [[nodiscard]] MpmEngine& engine() { return *engine_; }
+  [[nodiscard]] ConcurrentMpmSide& side() { return *side_; }
+
+ private:
+  std::vector<std::string> groups_;
+  grid::NodeBox band_;
+  double reach_ = 0.0, lattice_constant_ = 0.0;
+  std::unique_ptr<MpmEngine> engine_;
+  std::unique_ptr<ConcurrentMpmSide> side_;
+};
+
+}  // namespace pbms::mpm

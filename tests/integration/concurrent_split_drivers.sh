@@ -1,0 +1,74 @@
+source "$(dirname "$0")/lib.sh"
+# Split equals monolithic with the real drivers (issue 17): the small
+# concurrent bar (the left half DPD through the grid with the pair
+# thermostat on, the right half elastic MPM, hit by a DPD flyer) run by
+# dpd_driver and mpm_driver on 1+1, 2+2 and 1+3 ranks, oversubscribed, for
+# 200 steps, against the same stage advanced in one process by
+# concurrent_monolithic (both parts built as the drivers build them, an
+# InProcessLink between them, no band or reach). After 200 steps every
+# particle and point agrees: max |dx| <= 1e-11 of the body's length and
+# max |dv| <= 1e-10 of the largest speed, with the seed's interface
+# treatment and with the momentum-conserving one.
+CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
+MONO="$ROOT/build/bin/concurrent_monolithic"
+[ -x "$MONO" ] || fail "concurrent_monolithic is not built"
+
+compare() {  # RUN_DIR REFERENCE
+  "$PY" - "$1" "$2" <<'PYEOF'
+import sys
+import h5py
+import numpy as np
+import yaml
+
+run, ref_path = sys.argv[1], sys.argv[2]
+ref = {int(r[0]): r[1:] for r in np.loadtxt(ref_path, ndmin=2)}
+config = yaml.safe_load(open(f"{run}/config.yaml"))
+stage = config["stages"][0]
+lo, hi = np.array(stage["box"]["lo"]), np.array(stage["box"]["hi"])
+periodic = np.array(["xyz"[a] in stage["box"]["periodic"] for a in range(3)])
+length = 115.68  # the target's length along x
+dx = dv = vmax = 0.0
+seen = 0
+for name in ("dpd_particles", "mpm_particles"):
+    with h5py.File(f"{run}/impact/{name}.h5md", "r") as f:
+        g = f["particles/all"]
+        assert g["position/step"][-1] == 200, g["position/step"][:]
+        assert g["position/value"].dtype == np.float64
+        ids = g["id/value"][:] if "value" in g["id"] else g["id"][:]
+        x, v = g["position/value"][-1], g["velocity/value"][-1]
+    for i, pid in enumerate(ids):
+        r = ref[int(pid)]
+        d = x[i] - r[:3]
+        period = hi - lo
+        d = np.where(periodic, d - period * np.round(d / period), d)
+        dx = max(dx, np.abs(d).max())
+        dv = max(dv, np.abs(v[i] - r[3:]).max())
+        seen += 1
+vmax = max(np.linalg.norm(r[3:]) for r in ref.values())
+print(f"{run}: {seen} of {len(ref)} compared; max |dx| = {dx / length:.2e} of the length, "
+      f"max |dv| = {dv / vmax:.2e} of vmax {vmax:.2f} Å/ps")
+assert seen == len(ref), "particles missing"
+assert vmax > 1.0, "a body at rest"
+assert dx <= 1e-11 * length, "positions differ"
+assert dv <= 1e-10 * vmax, "velocities differ"
+PYEOF
+}
+
+for interface in seed momentum_conserving; do
+  first=""
+  for ranks in "1 1" "2 2" "1 3"; do
+    set -- $ranks
+    name="split_${interface}_$1_$2"
+    sed "s/name: concurrent_small/name: $name/; s/launch: {dpd: 1, mpm: 2}/launch: {dpd: $1, mpm: $2}/;
+         s/steps: 300/steps: 200/; s/interface: momentum_conserving/interface: $interface/" \
+      "$CONFIG" > "$name.yaml"
+    echo "    particles_every: 200" >> "$name.yaml"
+    "$PBMS" run "$name.yaml" > "$name.out" 2>&1 || { tail -20 "$name.out"; fail "$name failed"; }
+    if [ -z "$first" ]; then
+      first=$name
+      "$MONO" "runs/$name" impact "mono_$interface.txt" || fail "concurrent_monolithic failed"
+    fi
+    compare "runs/$name" "mono_$interface.txt" || fail "$name differs from the monolithic run"
+  done
+done
+echo "1 passed, 0 failed"
