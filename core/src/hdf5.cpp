@@ -29,11 +29,26 @@ Handle file_access(MPI_Comm comm) {
 }
 }  // namespace
 
+namespace {
+// Closer of a file opened through MPI-IO. Its close is collective: while an
+// exception unwinds on this rank, the others may be inside another
+// collective (a step's sums, a migration) and would never meet it, so the
+// rank would hang instead of reporting its failure. Then the file stays
+// open; the writers flush after every frame, so what they wrote is on disk,
+// and the job that is ending closes it, or MPI_Finalize does.
+herr_t close_collective_file(hid_t f) {
+  if (std::uncaught_exceptions() > 0) return 0;
+  return H5Fclose(f);
+}
+}  // namespace
+
 Handle create_truncate(const std::string& path, MPI_Comm comm) {
   Handle fapl = file_access(comm);
   const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
   if (f < 0) throw Error(fmt::format("cannot create HDF5 file '{}'", path));
-  return Handle(f, H5Fclose);
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  return Handle(f, size > 1 ? close_collective_file : H5Fclose);
 }
 
 namespace {

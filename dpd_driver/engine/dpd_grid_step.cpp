@@ -104,6 +104,7 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
   mpm::SolverOptions opt;
   opt.flip = settings.flip;
   opt.units = mpm::UnitSystem::metal();
+  opt.point_noun = "DPD particle";
   // MPM's small-mass floor drops the momentum of the nodes it skips (the
   // momentum test of a thermostatted crystal lost 4e-5 of sum m|v| over 200
   // steps with it). A DPD particle's weights are products of linear ones,

@@ -625,10 +625,14 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     if (!(J[i] > 0.0)) [[unlikely]] {
       const size_t p = p0 + i;
       if (!materials_[static_cast<size_t>(points.material[p])]->tracks_deformation()) continue;
-      throw Error(fmt::format(
-          "material point {} at ({:.6g}, {:.6g}, {:.6g}) inverted (det F = {:.3g}): the time "
-          "step is too large or the material failed",
-          points.id[p], points.x[p][0], points.x[p][1], points.x[p][2], J[i]));
+      const char* what = std::isnan(J[i])
+                             ? "has a non-finite deformation gradient (det F = {:.3g}): the step "
+                               "blew up"
+                             : "inverted (det F = {:.3g}): the time step is too large or the "
+                               "material failed";
+      throw Error(fmt::format("{} {} at ({:.6g}, {:.6g}, {:.6g}) {}", opt_.point_noun, points.id[p],
+                              points.x[p][0], points.x[p][1], points.x[p][2],
+                              fmt::format(fmt::runtime(what), J[i])));
     }
   }
   for (size_t i = 0; i < m;) {
@@ -687,10 +691,21 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     return;
   }
   x = d.wrapped(x, patch_.periodic);
-  if (!d.contains(x)) {
-    throw Error(fmt::format("material point {} left the grid at ({:.6g}, {:.6g}, {:.6g})",
-                            points.id[p], x[0], x[1], x[2]));
+  if (!d.contains(x)) point_off_grid(points.id[p], x, v);
+}
+
+// A point whose position is not finite did not leave the grid: the step
+// blew up (a NaN force or velocity), and the message says so.
+void MpmSolver::point_off_grid(int64_t id, const Vec3& x, const Vec3& v) const {
+  const char* noun = opt_.point_noun.c_str();
+  if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])) {
+    throw Error(
+        fmt::format("{} {} left the grid at ({:.6g}, {:.6g}, {:.6g})", noun, id, x[0], x[1], x[2]));
   }
+  throw Error(
+      fmt::format("{} {} has a non-finite position ({:.6g}, {:.6g}, {:.6g}), velocity "
+                  "({:.6g}, {:.6g}, {:.6g}) Å/ps: the step blew up",
+                  noun, id, x[0], x[1], x[2], v[0], v[1], v[2]));
 }
 
 void MpmSolver::sum_rigid() {

@@ -2,9 +2,10 @@ source "$(dirname "$0")/lib.sh"
 # Failures in a concurrent DPD/MPM stage end the whole job, never hang:
 # SIGKILL of an mpm_driver rank and of the dpd_driver rank mid-stage each end
 # it within 10 s, non-zero, naming the program, rank, stage and step; a
-# material point that inverts (an MPM time step far above its CFL bound)
-# and a DPD flyer launched off the grid each stop both programs with a
-# message naming the program, particle and step.
+# material point that inverts (an MPM time step far above its CFL bound),
+# a DPD flyer launched off the grid, MPM points pulled off the grid and DPD
+# particles whose forces are NaN each stop both programs within seconds,
+# with a message naming the program, particle, step and part of the body.
 CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
 
 kill_one() {  # PROGRAM WORLD_RANK EXPECTED_PROGRAM_RANK
@@ -48,6 +49,7 @@ fails_with() {  # NAME SED_EXPRESSION EXPECTED_TEXT REGIONS_TEXT
   echo "$name: exit code $rc after ${elapsed}s"
   grep "error\|failed" err.txt | head -2 || true
   [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "$name: exit code $rc (124: it hung)"
+  "$PY" -c "import sys; sys.exit(0 if $elapsed < 30 else 1)" || fail "$name: took ${elapsed}s to end"
   grep -q "$expect" err.txt || fail "$name: message does not say '$expect'"
   grep -q "step [0-9]" err.txt || fail "$name: message does not name the step"
   grep -q "$4" err.txt || fail "$name: message does not name the part's regions ('$4')"
@@ -60,4 +62,17 @@ fails_with mpm_unstable 's/youngs_modulus: 91 GPa/youngs_modulus: 91000000 GPa/'
   "in the MPM part (region 'right')"
 fails_with dpd_off_grid 's/velocity: \[5, 0, 0\]/velocity: [-3000, 0, 0]/' "dpd_driver rank 0 in stage 'impact' at step" \
   "in the DPD part (region 'left' and particles in no region)"
+# A rigid group at the MPM end pulled off the grid at 10 Å a step: before
+# the collective HDF5 close was skipped while an exception unwinds, the
+# failing mpm_driver rank closed its H5MD file and waited for the other
+# rank, which was migrating points: a hang.
+fails_with mpm_off_grid 's/    groups:/    groups:\n      - {name: mpm_end, region: {style: block, lo: [110, 0, 0], hi: [116, 28.92, 28.92]}}/;
+  s/      - {group: flyer, kind: rigid_body, velocity: \[5, 0, 0\]}/&\n      - {group: mpm_end, kind: rigid, velocity: [1000, 0, 0]}/' \
+  "mpm_driver rank [01] in stage 'impact' at step [0-9]*: material point [0-9]* left the grid" \
+  "in the MPM part (region 'right')"
+# A flyer overlapping the target puts two particles on each shared site:
+# their pair forces are NaN at the first step.
+fails_with dpd_nan 's/hi: \[-1, 28.92, 28.92\]}}/hi: [5, 28.92, 28.92]}}/' \
+  "dpd_driver rank 0 in stage 'impact' at step 1: DPD particle [0-9]* has a non-finite position" \
+  "in the DPD part (region 'left'"
 echo "1 passed, 0 failed"

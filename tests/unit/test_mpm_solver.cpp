@@ -251,6 +251,26 @@ TEST(MpmSolver, PointLeavingTheGridIsNamed) {
   }
 }
 
+// A point whose velocity went NaN is named as a blow-up, not as a point
+// inverted or off the grid.
+TEST(MpmSolver, PointWithANonFiniteVelocityIsNamed) {
+  grid::RegularGrid g({0, 0, 0}, 1.0, {4, 1, 1});
+  MpmSolver solver(g, grid::ShapeFunctionRegistry::create("linear"), elastic(100.0, 0.0), {});
+  MaterialPoints pts;
+  fill(pts, g, {1, 0, 0}, {2, 1, 1}, 1, 1.0);  // one point: the NaN spreads to its neighbours
+  pts.id[0] = 815;
+  pts.v[0] = {std::nan(""), 0.0, 0.0};
+  try {
+    solver.step(pts, {}, 0.01);
+    FAIL() << "the step should have stopped";
+  } catch (const pbms::Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("material point 815 "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("non-finite"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("the step blew up"), std::string::npos) << msg;
+  }
+}
+
 // The stable step is h / (c + |v|) with c the P-wave speed.
 TEST(MpmSolver, StableTimeStepIsTheCflBound) {
   grid::RegularGrid g({0, 0, 0}, 0.5, {4, 4, 4});

@@ -46,7 +46,8 @@ class Handle {
 // while an exception unwinds drops the copy and leaves `path` as it was.
 Handle open_or_create(const std::string& path);
 // With a communicator of more than one rank the file is created collectively
-// through MPI-IO.
+// through MPI-IO, and its handle is not closed while an exception unwinds:
+// the close is collective, and the other ranks may never come to it.
 Handle create_truncate(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
 // The group at `path` (slash separated), creating missing parents.
 Handle require_group(hid_t parent, const std::string& path);
