@@ -63,6 +63,12 @@ void DpdEngine::set_prescribed_groups(std::uint32_t mask) {
   prescribed_ = mask;
 }
 
+void DpdEngine::set_group_velocity(std::uint32_t mask, const Vec3& v) {
+  for (std::size_t i = 0; i < owned_; ++i) {
+    if ((particles_.group_mask[i] & mask) != 0) particles_.v[i] = v;
+  }
+}
+
 void DpdEngine::set_rigid_bodies(const std::vector<std::uint32_t>& masks) {
   std::uint32_t all = 0;
   for (const std::uint32_t m : masks) all |= m;

@@ -66,6 +66,10 @@ class DpdEngine {
   // the groups to the prescribed ones. Throws as set_prescribed_groups.
   void set_rigid_bodies(const std::vector<std::uint32_t>& masks);
 
+  // Sets the velocity of this rank's particles in `mask`, a prescribed
+  // group (a grip on a velocity ramp, before each step).
+  void set_group_velocity(std::uint32_t mask, const Vec3& v);
+
   // Points of another program that pair with this engine's particles (the
   // MPM ghosts of a concurrent run's interface treatment): each step's set,
   // as particles of `type`, appended after the ghosts before the neighbour

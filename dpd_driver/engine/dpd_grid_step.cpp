@@ -117,14 +117,6 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
       std::move(patch), grid::ShapeFunctionRegistry::create("linear"), std::move(materials), opt);
   for (const auto& g : settings.rigid) {
     bc_.point_velocities.push_back({g.mask, {true, true, true}, g.velocity});
-    double mass = 0.0;
-    for (std::size_t i = 0; i < engine_.owned(); ++i) {
-      if ((p.group_mask[i] & g.mask) != 0) mass += p.mass(i);
-    }
-    body_mass_.push_back(mass);
-  }
-  if (!body_mass_.empty()) {
-    allreduce_sum(engine_.comm(), body_mass_.data(), static_cast<int>(body_mass_.size()));
   }
   point_volume_ =
       box.volume() / static_cast<double>(std::max<std::int64_t>(1, engine_.total_particles()));
@@ -180,28 +172,62 @@ void DpdGridStep::store_points() {
   }
 }
 
-void DpdGridStep::push_free_bodies() {
-  const std::size_t bodies = settings_.rigid.size();
-  if (bodies == 0) return;
-  const DpdParticles& p = engine_.particles();
-  std::vector<double> force(3 * bodies, 0.0);
-  for (std::size_t b = 0; b < bodies; ++b) {
-    const auto& g = settings_.rigid[b];
-    if (!g.free_body) continue;
-    for (std::size_t i = 0; i < engine_.owned(); ++i) {
-      if ((p.group_mask[i] & g.mask) == 0) continue;
-      for (std::size_t a = 0; a < 3; ++a) force[3 * b + a] += p.f[i][a];
+void DpdGridStep::set_rigid_velocity(std::uint32_t mask, const mpm::Vec3& v) {
+  for (std::size_t b = 0; b < settings_.rigid.size(); ++b) {
+    if (settings_.rigid[b].mask == mask && !settings_.rigid[b].free_body) {
+      bc_.point_velocities[b].velocity = v;
     }
   }
-  // A body's particles may sit on any rank; every rank must move its part
-  // of the body at one velocity.
-  allreduce_sum(engine_.comm(), force.data(), static_cast<int>(force.size()));
-  // f / m in eV/Å/(g/mol) is mvv2e Å/ps² too small.
-  const double dt = engine_.settings().dt / units::kMvv2e;
+  engine_.set_group_velocity(mask, v);
+}
+
+// A free body's nodes hold the material that shares them as well as the
+// body's own particles. Holding them at the body's velocity pushes that
+// material, and setting the body's particles to it (rather than to what
+// FLIP would give them) changes their momentum; the body pays for both
+// when its velocity makes their sum zero. Momentum is then conserved to
+// round-off (PIC or FLIP), where a velocity changed by the body's pair
+// forces alone gave the material it sweeps along for free. Its own pair
+// forces are in its nodes' momentum.
+void DpdGridStep::balance_free_bodies() {
+  constexpr std::size_t kWidth = 10;  // reaction, share momentum, particle momentum, held mass
+  const std::size_t bodies = settings_.rigid.size();
+  std::vector<double> sums(kWidth * bodies, 0.0);
+  bool any = false;
   for (std::size_t b = 0; b < bodies; ++b) {
-    if (!settings_.rigid[b].free_body || !(body_mass_[b] > 0.0)) continue;
-    for (std::size_t a = 0; a < 3; ++a)
-      bc_.point_velocities[b].velocity[a] += dt * force[3 * b + a] / body_mass_[b];
+    if (!settings_.rigid[b].free_body) continue;
+    any = true;
+    double* row = &sums[kWidth * b];
+    const auto& r = solver_->point_velocity_reactions()[b];
+    const auto& share = solver_->held_share_momentum(b);
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      if (!points_.in_group(i, settings_.rigid[b].mask)) continue;
+      for (std::size_t a = 0; a < 3; ++a) row[6 + a] += points_.mass[i] * points_.v[i][a];
+    }
+    for (std::size_t a = 0; a < 3; ++a) {
+      row[a] = r[a];
+      row[3 + a] = share[a];
+    }
+    row[9] = solver_->held_mass(b);
+  }
+  if (!any) return;
+  allreduce_sum(engine_.comm(), sums.data(), static_cast<int>(sums.size()));
+  const double dt = engine_.settings().dt;
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const double* row = &sums[kWidth * b];
+    if (!settings_.rigid[b].free_body || !(row[9] > 0.0)) continue;
+    // Momentum the hold gives the nodes (reaction dt) and the body's
+    // particles (held minus FLIP-PIC blend: the FLIP part's weight times
+    // the nodes' old velocities weighted by the body's share, less its
+    // particles' own momentum).
+    mpm::Vec3 dv{};
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double pushed =
+          row[a] * dt / units::kMvv2e + settings_.flip * (row[3 + a] - row[6 + a]);
+      dv[a] = -pushed / row[9];
+    }
+    solver_->shift_held_nodes(b, dv, dt);
+    for (std::size_t a = 0; a < 3; ++a) bc_.point_velocities[b].velocity[a] += dv[a];
   }
 }
 
@@ -217,7 +243,6 @@ void DpdGridStep::compute_forces() {
   // velocities, which the ghosts' friction reads).
   refresh_neighbours();
   engine_.compute_forces();
-  push_free_bodies();
   load_points();
 }
 
@@ -254,6 +279,7 @@ void DpdGridStep::map_to_grid() {
 void DpdGridStep::update_and_map_back() {
   const double dt = engine_.settings().dt;
   solver_->update_nodes(bc_, dt);
+  balance_free_bodies();
   solver_->map_to_points(points_, bc_, dt);
   solver_->complete_remap_sums();
 }

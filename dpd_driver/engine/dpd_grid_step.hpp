@@ -15,7 +15,8 @@
 // Rigid groups enter in one way, wherever they appear: as prescribed-
 // velocity groups of the grid step (the particles keep the group's
 // velocity, and the nodes they touch move with it), as an MPM grip does;
-// a free rigid body's velocity first takes the net pair force on it.
+// a free rigid body's velocity is then the one that needs no force to hold
+// its nodes (balance_free_bodies), so momentum is conserved.
 //
 // On several ranks the engine takes the grid partition's split
 // (DomainDecomposition from a GridPartition) and rebuilds whenever a
@@ -23,7 +24,8 @@
 // particle lies in its own rank's cells: each rank's solver works on
 // partition().nodes_of(rank), and the nodal sums over ranks are the
 // HaloSum an MPM run uses (GridPatch::sum_shared), which also folds the
-// periodic faces on one rank. Rigid groups sum mass and force over ranks.
+// periodic faces on one rank. Free rigid bodies sum their nodes' mass and
+// holding force over ranks.
 // Particles exactly on a node plane are the one place where ranks may
 // differ by more than round-off: a rigid group's particle there gives the
 // node beyond a weight of round-off size, which marks the node rigid or
@@ -49,8 +51,9 @@ struct DpdGridSettings {
   int free_axis_margin_cells = 4;
   // Rigid groups, group bits as DpdParticles::group_mask: each moves at
   // its velocity on the grid (PointVelocity on every axis). A free body's
-  // velocity changes each step by the net pair force on its particles over
-  // their mass (a flyer); the others keep theirs (grips, walls).
+  // velocity is, each step, the momentum of the nodes it holds over their
+  // mass (a flyer: momentum conserved with the material it sweeps); the
+  // others keep theirs (grips, walls).
   struct RigidGroup {
     std::uint32_t mask = 0;
     mpm::Vec3 velocity{0.0, 0.0, 0.0};
@@ -88,6 +91,10 @@ class DpdGridStep {
   void finish_step();          // move with the grid velocity (s-11), step counted, ghosts
                                // follow
 
+  // The velocity a rigid (not free) group of settings.rigid moves at from
+  // the next step on (a grip on a velocity ramp).
+  void set_rigid_velocity(std::uint32_t mask, const mpm::Vec3& v);
+
   // Whether the next compute_forces will rebuild the neighbour list (a
   // particle moved more than half the skin, or left its rank's cells).
   // Collective over the engine's ranks.
@@ -116,8 +123,9 @@ class DpdGridStep {
   // particle on the rank whose patch holds it, so that forces a rebuild
   // (wrap, migration, ghosts, list), as a move of half the skin does.
   [[nodiscard]] bool left_own_cells() const;
-  // Free bodies: v += dt F / M, from this step's pair forces.
-  void push_free_bodies();
+  // Free bodies: after the nodal update, the velocity that makes the
+  // force holding their nodes zero (collective).
+  void balance_free_bodies();
 
   DpdEngine& engine_;
   DpdGridSettings settings_;
@@ -129,7 +137,6 @@ class DpdGridStep {
   double point_volume_ = 0.0;  // Å³; only a stress term uses it, and that is zero
   mpm::BoundaryConditions bc_;
   std::vector<mpm::Vec3> forces_;
-  std::vector<double> body_mass_;  // per settings_.rigid entry, g/mol
 };
 
 }  // namespace pbms::dpd

@@ -23,6 +23,7 @@
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
 #include "pbms/units.hpp"
+#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -48,7 +49,9 @@ struct DpdView {
 struct TensionSeries {
   coupling::TensionProbe probe;
   std::uint32_t left = 0, right = 0;
-  double pull_rate = 0.0;  // Å/ps, the grips' separation speed
+  // Each grip's full speed along the axis (Å/ps, the left one's counted
+  // negative) and its ramp time (ps).
+  std::vector<std::pair<double, double>> grips;
   double length = 0.0, area = 0.0;
   std::vector<double> strain, stress, grip_stress;  // 1, GPa, GPa
 
@@ -56,8 +59,8 @@ struct TensionSeries {
       : probe(t), left(part.group_mask(t.left_grip)), right(part.group_mask(t.right_grip)) {
     const auto a = static_cast<std::size_t>(t.axis);
     for (const auto& g : part.group_motions()) {
-      if (g.mask == left) pull_rate -= g.velocity[a];
-      if (g.mask == right) pull_rate += g.velocity[a];
+      if (g.mask == left) grips.emplace_back(-g.velocity[a], g.ramp_time);
+      if (g.mask == right) grips.emplace_back(g.velocity[a], g.ramp_time);
     }
     length = part.body_extent()[a];
     area = 1.0;
@@ -71,7 +74,9 @@ struct TensionSeries {
   // measures it; and the grips' holding forces (each part's plus the
   // other's) over the initial cross-section.
   void add(double t, double dpd_virial, double mpm_stress_volume, double f_left, double f_right) {
-    const double e = pull_rate * t / length;
+    double separation = 0.0;  // the grips' change of distance since the start
+    for (const auto& [speed, ramp] : grips) separation += speed * ramp_displacement(t, ramp);
+    const double e = separation / length;
     constexpr double kGPa = units::kBarPerEvPerA3 / units::kBarPerGPa;  // eV/Å^3 to GPa
     strain.push_back(e);
     stress.push_back((mpm_stress_volume - dpd_virial) / (area * length * (1.0 + e)) * kGPa);
@@ -235,6 +240,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
+    part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kDpd));
     probes.track(n, view.view(engine));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);

@@ -172,12 +172,13 @@ DpdModel build_dpd_model(const YAML::Node& p, const YAML::Node& material, std::u
     const std::uint32_t bit = m.group_mask(mo["group"].as<std::string>());
     const auto kind = mo["kind"].as<std::string>();
     const Vec3 v = kind == "frozen" ? Vec3{0.0, 0.0, 0.0} : vec3(mo["velocity"]);
+    const double ramp = kind == "rigid" ? mo["ramp_time"].as<double>(0.0) : 0.0;
     for (std::size_t i = 0; i < m.particles.size(); ++i) {
       if ((m.particles.group_mask[i] & bit) == 0) continue;
       if (kind == "velocity") {
         for (int a = 0; a < 3; ++a) m.particles.v[i][a] += v[a];
       } else {
-        m.particles.v[i] = v;
+        m.particles.v[i] = ramp > 0.0 ? Vec3{0.0, 0.0, 0.0} : v;
       }
     }
     if (kind == "rigid_body") {
@@ -185,7 +186,7 @@ DpdModel build_dpd_model(const YAML::Node& p, const YAML::Node& material, std::u
     } else if (kind != "velocity") {
       m.prescribed_mask |= bit;
     }
-    if (kind != "velocity") m.group_motions.push_back({bit, v, kind == "rigid_body"});
+    if (kind != "velocity") m.group_motions.push_back({bit, v, kind == "rigid_body", ramp});
   }
 
   // Integrator.

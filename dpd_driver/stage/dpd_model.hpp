@@ -32,6 +32,7 @@ struct DpdModel {
     std::uint32_t mask = 0;
     Vec3 velocity{0.0, 0.0, 0.0};
     bool free_body = false;  // rigid_body: pushed by the net force on it
+    double ramp_time = 0.0;  // rigid: `velocity` reached over this time (velocity_ramp.hpp)
   };
   std::vector<GroupMotion> group_motions;
 

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "kernels/periodic_wrap.hpp"
+#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -139,6 +140,18 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
   grid_ =
       std::make_unique<DpdGridStep>(*engine_, grid_settings(cp_, model_), cp_.grid, cp_.periodic);
   side_ = std::make_unique<ConcurrentDpdSide>(*engine_, *grid_, 0);
+}
+
+void DpdPartOfBody::ramp_grips(std::int64_t step) {
+  for (const auto& g : model_.group_motions) {
+    if (g.free_body || !(g.ramp_time > 0.0) ||
+        ramp_fraction(step - 1, cp_.time_step, g.ramp_time) >= 1.0) {
+      continue;
+    }
+    Vec3 v = g.velocity;
+    for (double& c : v) c *= ramp_fraction(step, cp_.time_step, g.ramp_time);
+    grid_->set_rigid_velocity(g.mask, v);
+  }
 }
 
 }  // namespace pbms::dpd

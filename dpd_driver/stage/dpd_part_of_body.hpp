@@ -53,6 +53,10 @@ class DpdPartOfBody {
   [[nodiscard]] double dpd_particles() const { return dpd_count_; }
   [[nodiscard]] double mpm_points() const { return mpm_count_; }
 
+  // Before step `step`: the rigid groups on a velocity ramp take that
+  // step's velocity.
+  void ramp_grips(std::int64_t step);
+
   [[nodiscard]] DpdEngine& engine() { return *engine_; }
   [[nodiscard]] DpdGridStep& grid() { return *grid_; }
   [[nodiscard]] ConcurrentDpdSide& side() { return *side_; }

@@ -22,6 +22,7 @@
 #include "pbms/mpi/comm.hpp"
 #include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
+#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -266,8 +267,24 @@ void run_stage(StageContext& ctx, Mode mode) {
   if (mode == Mode::kImpact) track_slabs(0);
   if (particles_every > 0 || steps == 0) write_frame(0);
   const auto started = std::chrono::steady_clock::now();
+  // Grips on a velocity ramp take each step's speed before it.
+  auto ramp_grips = [&](std::int64_t n) {
+    for (const auto& g : group_motions) {
+      if (g.free_body || !(g.ramp_time > 0.0) || ramp_fraction(n - 1, dt, g.ramp_time) >= 1.0) {
+        continue;
+      }
+      Vec3 v = g.velocity;
+      for (double& c : v) c *= ramp_fraction(n, dt, g.ramp_time);
+      if (grid_step) {
+        grid_step->set_rigid_velocity(g.mask, v);
+      } else {
+        engine.set_group_velocity(g.mask, v);
+      }
+    }
+  };
   for (std::int64_t n = 1; n <= steps; ++n) {
     set_current_step(n);
+    ramp_grips(n);
     if (grid_step) {
       grid_step->step();
     } else {

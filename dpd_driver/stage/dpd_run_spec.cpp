@@ -52,7 +52,13 @@ std::vector<Param> dpd_stage_params() {
       .variant("rigid",
                {Param::real_list("velocity", Dimension::kVelocity, "Constant velocity")
                     .require()
-                    .length(3, 3)},
+                    .length(3, 3),
+                Param::real("ramp_time", Dimension::kTime,
+                            "Reach the velocity linearly over this time from rest (0: at once). "
+                            "About one wave transit of the body loads it without the stress "
+                            "step a grip at full speed sends through it")
+                    .def(0.0)
+                    .at_least(0)},
                "Moves rigidly at a constant velocity (a grip, a driven piston)")
       .variant("rigid_body",
                {Param::real_list("velocity", Dimension::kVelocity, "Initial velocity")

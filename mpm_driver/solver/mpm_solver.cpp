@@ -236,7 +236,7 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
         if (!points.in_group(p, bc.point_velocities[c].group_mask)) continue;
         for (int q = 0; q < s.count; ++q) {
           const auto qq = static_cast<size_t>(q);
-          if (s.N[qq] > 0.0) rigid_[c][static_cast<size_t>(s.node[qq])] += s.N[qq];
+          if (s.N[qq] > 0.0) rigid_[c][static_cast<size_t>(s.node[qq])] += s.N[qq] * m;
         }
       }
     }
@@ -317,7 +317,7 @@ void MpmSolver::scatter_lanes(const grid::ShapeFunctionLinear::Kernel& kernel,
       if (!points.in_group(p + k, bc.point_velocities[c].group_mask)) continue;
       for (int q = 0; q < 8; ++q) {
         const double N = wt[0][k][q];
-        if (N > 0.0) rigid_[c][static_cast<size_t>(s.node(k, q))] += N;
+        if (N > 0.0) rigid_[c][static_cast<size_t>(s.node(k, q))] += N * points.mass[p + k];
       }
     }
   }
@@ -858,6 +858,15 @@ void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
     }
   }
   apply_node_constraints(bc, velocity_, true);
+  share_momentum_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
+  for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+    for (size_t i = 0; i < sums_.size(); ++i) {
+      // rigid_ holds each node's whole sum on every copy (sum_rigid).
+      if (rigid_[c][i] > 0.0 && unique_node_[i]) {
+        add_scaled(share_momentum_[c], rigid_[c][i], acceleration_[i]);
+      }
+    }
+  }
   hold_rigid_nodes(bc, dt);
   for (size_t i = 0; i < sums_.size(); ++i) {
     if (sums_[i].lanes[sums::kMass] > mass_floor_) {
@@ -887,6 +896,30 @@ void MpmSolver::hold_rigid_nodes(const BoundaryConditions& bc, double dt) {
       }
     }
   }
+}
+
+double MpmSolver::held_mass(size_t c) const {
+  double m = 0.0;
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    const double mass = sums_[i].lanes[sums::kMass];
+    if (rigid_[c][i] > 0.0 && unique_node_[i] && mass > mass_floor_) m += mass;
+  }
+  return m;
+}
+
+void MpmSolver::shift_held_nodes(size_t c, const Vec3& dv, double dt) {
+  const double kf = opt_.units.force_per_mass_to_accel;
+  double moved = 0.0;  // the reaction's change: the held mass times dv / dt
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    if (rigid_[c][i] <= 0.0) continue;
+    const double mass = sums_[i].lanes[sums::kMass];
+    add_scaled(velocity_[i], 1.0, dv);
+    if (mass > mass_floor_) {
+      add_scaled(acceleration_[i], 1.0 / dt, dv);
+      if (unique_node_[i]) moved += mass;
+    }
+  }
+  add_scaled(reaction_[c], moved / (dt * kf), dv);
 }
 
 // Grid to points (s-7), and under update-stress-last the remap of the new

@@ -128,6 +128,17 @@ class MpmSolver {
   // bc.point_velocities entry's nodes at its prescribed velocity in the
   // last step: the reaction a rigid grip, piston or flyer feels.
   [[nodiscard]] const std::vector<Vec3>& point_velocity_reactions() const { return reaction_; }
+  // Between update_nodes and map_to_points: the mass on entry c's held
+  // nodes (over the nodes this rank counts), and a change dv of those
+  // nodes' velocity (every copy; the caller changes the entry's velocity
+  // alike). A free rigid body takes them to balance its reaction: the
+  // velocity that makes it zero conserves momentum (DpdGridStep).
+  [[nodiscard]] double held_mass(size_t c) const;
+  // Entry c's points' share of each node's mass times the node's velocity
+  // before the update, summed over this rank's nodes: what FLIP would give
+  // those points' momentum before the hold sets it (DpdGridStep).
+  [[nodiscard]] const Vec3& held_share_momentum(size_t c) const { return share_momentum_[c]; }
+  void shift_held_nodes(size_t c, const Vec3& dv, double dt);
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return patch_.domain; }
   [[nodiscard]] const GridPatch& patch() const { return patch_; }
@@ -239,8 +250,10 @@ class MpmSolver {
   std::vector<NodeLanes> kin_;
   std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
   std::vector<Vec3> reaction_;
-  std::vector<std::vector<double>> rigid_;  // per point_velocities entry: weight of its points
+  std::vector<std::vector<double>>
+      rigid_;  // per point_velocities entry: its points' share of each node's mass
   std::vector<char> unique_node_;
+  std::vector<Vec3> share_momentum_;  // per point_velocities entry (held_share_momentum)
   // DDMP: this rank's operator (rows as integrals M_ji), the nodal volumes
   // V_j summed over ranks, nodal velocity gradients, stress moments and the
   // dual part of the internal force.

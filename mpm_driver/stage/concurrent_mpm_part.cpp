@@ -147,6 +147,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
+    part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kMpm));
     probes.track(n, view_of(engine.points()));
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);

@@ -11,6 +11,7 @@
 #include "pbms/geometry/cell_fill.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 #include "pbms/units.hpp"
+#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::mpm {
 namespace {
@@ -194,6 +195,8 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       pv.group_mask = m.group_mask(group);
       pv.axis = axes_of(c["axes"]);
       pv.velocity = vec3(c["velocity"]);
+      m.point_velocity_ramps.push_back({c["ramp_time"].as<double>(0.0), pv.velocity});
+      if (m.point_velocity_ramps.back().time > 0.0) pv.velocity = {0.0, 0.0, 0.0};
       m.bc.point_velocities.push_back(pv);
       m.point_velocity_groups.push_back(group);
     } else if (kind == "group_force") {
@@ -210,6 +213,16 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
   }
   m.bc.body_acceleration = vec3(params["body_acceleration"]);
   return m;
+}
+
+void ramp_point_velocities(const MpmModel& model, BoundaryConditions& bc, std::int64_t step,
+                           double dt) {
+  for (std::size_t k = 0; k < model.point_velocity_ramps.size(); ++k) {
+    const auto& r = model.point_velocity_ramps[k];
+    if (!(r.time > 0.0) || ramp_fraction(step - 1, dt, r.time) >= 1.0) continue;
+    const double f = ramp_fraction(step, dt, r.time);
+    for (std::size_t a = 0; a < 3; ++a) bc.point_velocities[k].velocity[a] = f * r.velocity[a];
+  }
 }
 
 }  // namespace pbms::mpm

@@ -36,9 +36,21 @@ struct MpmModel {
   BoundaryConditions bc;
   // For each bc.point_velocities entry, the group it holds (for probes).
   std::vector<std::string> point_velocity_groups;
+  // For each bc.point_velocities entry, its full velocity and the time it
+  // is reached over from rest (0: at once; velocity_ramp.hpp).
+  struct Ramp {
+    double time = 0.0;
+    Vec3 velocity{0.0, 0.0, 0.0};
+  };
+  std::vector<Ramp> point_velocity_ramps;
 
   [[nodiscard]] uint32_t group_mask(const std::string& name) const;  // throws if unknown
 };
+
+// Sets each ramped point velocity of `bc` to its value for step `step`
+// (before that step); entries past their ramp are left alone.
+void ramp_point_velocities(const MpmModel& model, BoundaryConditions& bc, std::int64_t step,
+                           double dt);
 
 using geometry::region_from_yaml;
 

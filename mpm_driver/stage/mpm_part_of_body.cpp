@@ -38,8 +38,9 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::Handover
     PointVelocity pv;
     pv.group_mask = m.group_mask(h.group);
     pv.axis = {true, true, true};
-    pv.velocity = h.velocity;
+    pv.velocity = h.ramp_time > 0.0 ? Vec3{0.0, 0.0, 0.0} : h.velocity;
     m.bc.point_velocities.push_back(pv);
+    m.point_velocity_ramps.push_back({h.ramp_time, h.velocity});
   }
   return m;
 }
@@ -64,6 +65,11 @@ MpmPartOfBody::MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp
   engine_ =
       std::make_unique<MpmEngine>(comm, model_of(cp, body, groups_, volume), std::move(materials));
   side_ = std::make_unique<ConcurrentMpmSide>(*engine_, cp.time_step, header["skin"].as<double>());
+  time_step_ = cp.time_step;
+}
+
+void MpmPartOfBody::ramp_grips(std::int64_t step) {
+  ramp_point_velocities(engine_->model(), engine_->boundary_conditions(), step, time_step_);
 }
 
 }  // namespace pbms::mpm

@@ -8,6 +8,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,13 +33,17 @@ class MpmPartOfBody {
   // The fcc lattice constant the points sit on (Å).
   [[nodiscard]] double lattice_constant() const { return lattice_constant_; }
 
+  // Before step `step`: the held groups on a velocity ramp take that
+  // step's velocity.
+  void ramp_grips(std::int64_t step);
+
   [[nodiscard]] MpmEngine& engine() { return *engine_; }
   [[nodiscard]] ConcurrentMpmSide& side() { return *side_; }
 
  private:
   std::vector<std::string> groups_;
   grid::NodeBox band_;
-  double reach_ = 0.0, lattice_constant_ = 0.0;
+  double reach_ = 0.0, lattice_constant_ = 0.0, time_step_ = 0.0;
   std::unique_ptr<MpmEngine> engine_;
   std::unique_ptr<ConcurrentMpmSide> side_;
 };

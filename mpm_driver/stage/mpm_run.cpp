@@ -57,6 +57,7 @@ void MpmRunStage::run(StageContext& ctx) {
   sample(0, 0.0);
   output.write(engine, 0, 0.0);
   for (std::int64_t n = 1; n <= steps; ++n) {
+    ramp_point_velocities(engine.model(), engine.boundary_conditions(), n, dt);
     engine.step(dt);
     const double t = static_cast<double>(n) * dt;
     if (n % params.sample_every == 0 || n == steps) sample(n, t);

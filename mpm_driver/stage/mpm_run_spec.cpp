@@ -100,7 +100,12 @@ config::StageKindSpec MpmRunStage::spec() {
                 axes_param("Velocity components prescribed").require(),
                 Param::real_list("velocity", Dimension::kVelocity, "Prescribed velocity")
                     .require()
-                    .length(3, 3)},
+                    .length(3, 3),
+                Param::real("ramp_time", Dimension::kTime,
+                            "Reach the velocity linearly over this time from rest (0: at once), "
+                            "as a DPD rigid group's ramp_time")
+                    .def(0.0)
+                    .at_least(0)},
                "Points of a group moved at a prescribed velocity (grips, flyers, pistons), "
                "with the nodes they touch. A slow compression to large strain needs "
                "gradient: ddmp with ddmp_blend: face_vanishing (docs/mpm-driver.md, Known "

@@ -46,7 +46,11 @@ std::map<std::int64_t, Row> advance(const YAML::Node& config, const std::string&
   pbms::mpm::MpmPartOfBody mpm(MPI_COMM_SELF, cp, dpd.handover(), material);
   pbms::coupling::InProcessLink link(dpd.side(), mpm.side());
   pbms::coupling::CouplingScheme scheme({&dpd.side(), &mpm.side()}, link, cp.interface);
-  for (std::int64_t n = 1; n <= cp.steps; ++n) scheme.step();
+  for (std::int64_t n = 1; n <= cp.steps; ++n) {
+    dpd.ramp_grips(n);
+    mpm.ramp_grips(n);
+    scheme.step();
+  }
 
   std::map<std::int64_t, Row> out;
   const auto& p = dpd.engine().particles();

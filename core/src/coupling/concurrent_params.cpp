@@ -66,6 +66,7 @@ ConcurrentParams concurrent_params(const YAML::Node& p) {
     if (kind == "rigid") {
       const auto v = m["velocity"].as<std::vector<double>>();
       h.velocity = {v[0], v[1], v[2]};
+      h.ramp_time = m["ramp_time"].as<double>(0.0);
     }
     c.held.push_back(h);
   }

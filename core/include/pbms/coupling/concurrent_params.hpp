@@ -48,6 +48,7 @@ struct TensionProbe {
 struct HeldGroup {
   std::string group;
   Vec3 velocity{0.0, 0.0, 0.0};
+  double ramp_time = 0.0;  // ps: `velocity` reached over this time (velocity_ramp.hpp)
 };
 
 struct ConcurrentParams {
