@@ -105,7 +105,7 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<grid::ShapeFunction> shape
       local_(patch_grid(patch_)),
       shape_(std::move(shape)),
       materials_(std::move(materials)),
-      opt_(options),
+      opt_(std::move(options)),
       linear_(dynamic_cast<const grid::ShapeFunctionLinear*>(shape_.get()) != nullptr),
       block_(std::make_unique<MaterialBlock>()) {
   const auto n = static_cast<size_t>(local_.node_count());

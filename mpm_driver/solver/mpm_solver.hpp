@@ -83,7 +83,8 @@ class MpmSolver {
   // A serial solver on the whole grid.
   MpmSolver(const grid::RegularGrid& grid, std::unique_ptr<grid::ShapeFunction> shape,
             std::vector<std::unique_ptr<Material>> materials, SolverOptions options)
-      : MpmSolver(GridPatch::whole(grid), std::move(shape), std::move(materials), options) {}
+      : MpmSolver(GridPatch::whole(grid), std::move(shape), std::move(materials),
+                  std::move(options)) {}
 
   // Advances the points by dt: the phases below, in order. Points end
   // wrapped on periodic axes and may have left this solver's box (the
