@@ -14,6 +14,7 @@
 #include "pbms/io/h5md_reader.hpp"
 #include "pbms/io/lammps_data_reader.hpp"
 #include "pbms/units.hpp"
+#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::dpd {
 
@@ -229,6 +230,20 @@ std::uint64_t stage_seed(std::uint64_t seed, const std::string& stage) {
     h *= 1099511628211ULL;
   }
   return h;
+}
+
+std::vector<RampedVelocity> ramped_velocities(const std::vector<DpdModel::GroupMotion>& motions,
+                                              std::int64_t step, double dt) {
+  std::vector<RampedVelocity> out;
+  for (const auto& g : motions) {
+    if (g.free_body || !(g.ramp_time > 0.0) || ramp_fraction(step - 1, dt, g.ramp_time) >= 1.0) {
+      continue;
+    }
+    RampedVelocity r{g.mask, g.velocity};
+    for (double& c : r.velocity) c *= ramp_fraction(step, dt, g.ramp_time);
+    out.push_back(r);
+  }
+  return out;
 }
 
 }  // namespace pbms::dpd

@@ -40,6 +40,15 @@ struct DpdModel {
   [[nodiscard]] std::uint32_t group_mask(const std::string& name) const;
 };
 
+// The rigid groups on a velocity ramp whose velocity changes before step
+// `step`, each with that step's velocity (velocity_ramp.hpp).
+struct RampedVelocity {
+  std::uint32_t mask = 0;
+  Vec3 velocity{0.0, 0.0, 0.0};
+};
+[[nodiscard]] std::vector<RampedVelocity> ramped_velocities(
+    const std::vector<DpdModel::GroupMotion>& motions, std::int64_t step, double dt);
+
 // The pair style a dpd_mesoparticle material's resolved `potential` map
 // describes (PairStyleRegistry checks the numbers again).
 [[nodiscard]] std::unique_ptr<PairStyle> pair_style_from_yaml(const YAML::Node& potential);

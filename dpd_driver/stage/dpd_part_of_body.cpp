@@ -7,7 +7,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include "kernels/periodic_wrap.hpp"
-#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -143,14 +142,8 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
 }
 
 void DpdPartOfBody::ramp_grips(std::int64_t step) {
-  for (const auto& g : model_.group_motions) {
-    if (g.free_body || !(g.ramp_time > 0.0) ||
-        ramp_fraction(step - 1, cp_.time_step, g.ramp_time) >= 1.0) {
-      continue;
-    }
-    Vec3 v = g.velocity;
-    for (double& c : v) c *= ramp_fraction(step, cp_.time_step, g.ramp_time);
-    grid_->set_rigid_velocity(g.mask, v);
+  for (const auto& r : ramped_velocities(model_.group_motions, step, cp_.time_step)) {
+    grid_->set_rigid_velocity(r.mask, r.velocity);
   }
 }
 

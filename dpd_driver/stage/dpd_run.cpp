@@ -22,7 +22,6 @@
 #include "pbms/mpi/comm.hpp"
 #include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
-#include "pbms/velocity_ramp.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -269,16 +268,11 @@ void run_stage(StageContext& ctx, Mode mode) {
   const auto started = std::chrono::steady_clock::now();
   // Grips on a velocity ramp take each step's speed before it.
   auto ramp_grips = [&](std::int64_t n) {
-    for (const auto& g : group_motions) {
-      if (g.free_body || !(g.ramp_time > 0.0) || ramp_fraction(n - 1, dt, g.ramp_time) >= 1.0) {
-        continue;
-      }
-      Vec3 v = g.velocity;
-      for (double& c : v) c *= ramp_fraction(n, dt, g.ramp_time);
+    for (const auto& r : ramped_velocities(group_motions, n, dt)) {
       if (grid_step) {
-        grid_step->set_rigid_velocity(g.mask, v);
+        grid_step->set_rigid_velocity(r.mask, r.velocity);
       } else {
-        engine.set_group_velocity(g.mask, v);
+        engine.set_group_velocity(r.mask, r.velocity);
       }
     }
   };
