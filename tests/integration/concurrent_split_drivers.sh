@@ -8,7 +8,8 @@ source "$(dirname "$0")/lib.sh"
 # InProcessLink between them, no band or reach). After 200 steps every
 # particle and point agrees: max |dx| <= 1e-11 of the body's length and
 # max |dv| <= 1e-10 of the largest speed, with the seed's interface
-# treatment and with the momentum-conserving one.
+# treatment and with the momentum-conserving one, a grip on each side
+# pulled on a velocity ramp.
 CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
 MONO="$ROOT/build/bin/concurrent_monolithic"
 [ -x "$MONO" ] || fail "concurrent_monolithic is not built"
@@ -54,19 +55,44 @@ assert dv <= 1e-10 * vmax, "velocities differ"
 PYEOF
 }
 
+# The grips moved as their ramps say over the 2 ps: v (t - T/2), the
+# MPM one 1 x (2 - 0.5) Å along x, the DPD one 0.5 x (2 - 0.25) Å along y.
+grips_ramped() {  # RUN_DIR
+  "$PY" - "$1" <<'PYEOF'
+import sys
+import h5py
+import numpy as np
+run = sys.argv[1]
+def moved(name, axis, expect):
+    with h5py.File(f"{run}/impact/{name}.h5md", "r") as f:
+        x = f["particles/all/position/value"]
+        d = x[-1] - x[0]
+    on = np.abs(d[:, axis] - expect) < 1e-9
+    print(f"{name}: {on.sum()} particles moved {expect} Å along {'xyz'[axis]} (the ramped grip)")
+    return on.sum() >= 16
+ok = moved("mpm_particles", 0, 1.5) and moved("dpd_particles", 1, 0.875)
+sys.exit(0 if ok else 1)
+PYEOF
+}
+
 for interface in seed momentum_conserving; do
   first=""
   for ranks in "1 1" "2 2" "1 3"; do
     set -- $ranks
     name="split_${interface}_$1_$2"
+    # A grip on each side, on velocity ramps: both parts and the
+    # reference must ramp them alike.
     sed "s/name: concurrent_small/name: $name/; s/launch: {dpd: 1, mpm: 2}/launch: {dpd: $1, mpm: $2}/;
-         s/steps: 300/steps: 200/; s/interface: momentum_conserving/interface: $interface/" \
+         s/steps: 300/steps: 200/; s/interface: momentum_conserving/interface: $interface/;
+         s/      - {group: flyer, kind: rigid_body, velocity: \[5, 0, 0\]}/&\n      - {group: mpm_far, kind: rigid, velocity: [1, 0, 0], ramp_time: 1}\n      - {group: dpd_near, kind: rigid, velocity: [0, 0.5, 0], ramp_time: 0.5}/" \
       "$CONFIG" > "$name.yaml"
+    grep -q "ramp_time: 0.5" "$name.yaml" || fail "the grips were not added"
     echo "    particles_every: 200" >> "$name.yaml"
     "$PBMS" run "$name.yaml" > "$name.out" 2>&1 || { tail -20 "$name.out"; fail "$name failed"; }
     if [ -z "$first" ]; then
       first=$name
       "$MONO" "runs/$name" impact "mono_$interface.txt" || fail "concurrent_monolithic failed"
+      grips_ramped "runs/$name" || fail "$name: the grips did not follow their ramps"
     fi
     compare "runs/$name" "mono_$interface.txt" || fail "$name differs from the monolithic run"
   done
