@@ -226,7 +226,7 @@ void DpdGridStep::balance_free_bodies() {
           row[a] * dt / units::kMvv2e + settings_.flip * (row[3 + a] - row[6 + a]);
       dv[a] = -pushed / row[9];
     }
-    solver_->shift_held_nodes(b, dv, dt);
+    solver_->shift_held_nodes(bc_, b, dv, dt);
     for (std::size_t a = 0; a < 3; ++a) bc_.point_velocities[b].velocity[a] += dv[a];
   }
 }

@@ -907,19 +907,22 @@ double MpmSolver::held_mass(size_t c) const {
   return m;
 }
 
-void MpmSolver::shift_held_nodes(size_t c, const Vec3& dv, double dt) {
+void MpmSolver::shift_held_nodes(const BoundaryConditions& bc, size_t c, const Vec3& dv,
+                                 double dt) {
   const double kf = opt_.units.force_per_mass_to_accel;
+  Vec3 held_dv{};  // dv on the axes the entry holds
+  for (size_t a = 0; a < 3; ++a) held_dv[a] = bc.point_velocities[c].axis[a] ? dv[a] : 0.0;
   double moved = 0.0;  // the reaction's change: the held mass times dv / dt
   for (size_t i = 0; i < sums_.size(); ++i) {
     if (rigid_[c][i] <= 0.0) continue;
     const double mass = sums_[i].lanes[sums::kMass];
-    add_scaled(velocity_[i], 1.0, dv);
+    add_scaled(velocity_[i], 1.0, held_dv);
     if (mass > mass_floor_) {
-      add_scaled(acceleration_[i], 1.0 / dt, dv);
+      add_scaled(acceleration_[i], 1.0 / dt, held_dv);
       if (unique_node_[i]) moved += mass;
     }
   }
-  add_scaled(reaction_[c], moved / (dt * kf), dv);
+  add_scaled(reaction_[c], moved / (dt * kf), held_dv);
 }
 
 // Grid to points (s-7), and under update-stress-last the remap of the new

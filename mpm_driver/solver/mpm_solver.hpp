@@ -131,15 +131,17 @@ class MpmSolver {
   [[nodiscard]] const std::vector<Vec3>& point_velocity_reactions() const { return reaction_; }
   // Between update_nodes and map_to_points: the mass on entry c's held
   // nodes (over the nodes this rank counts), and a change dv of those
-  // nodes' velocity (every copy; the caller changes the entry's velocity
-  // alike). A free rigid body takes them to balance its reaction: the
-  // velocity that makes it zero conserves momentum (DpdGridStep).
+  // nodes' velocity on the axes it holds (every copy; the caller changes
+  // the entry's velocity alike). A free rigid body takes them to balance
+  // its reaction: the velocity that makes it zero conserves momentum
+  // (DpdGridStep). Nodes another entry also holds are shifted too, so the
+  // balance is exact only for a body whose nodes no other entry holds.
   [[nodiscard]] double held_mass(size_t c) const;
   // Entry c's points' share of each node's mass times the node's velocity
   // before the update, summed over this rank's nodes: what FLIP would give
   // those points' momentum before the hold sets it (DpdGridStep).
   [[nodiscard]] const Vec3& held_share_momentum(size_t c) const { return share_momentum_[c]; }
-  void shift_held_nodes(size_t c, const Vec3& dv, double dt);
+  void shift_held_nodes(const BoundaryConditions& bc, size_t c, const Vec3& dv, double dt);
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return patch_.domain; }
   [[nodiscard]] const GridPatch& patch() const { return patch_; }

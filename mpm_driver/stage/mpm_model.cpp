@@ -196,7 +196,16 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       pv.axis = axes_of(c["axes"]);
       pv.velocity = vec3(c["velocity"]);
       m.point_velocity_ramps.push_back({c["ramp_time"].as<double>(0.0), pv.velocity});
-      if (m.point_velocity_ramps.back().time > 0.0) pv.velocity = {0.0, 0.0, 0.0};
+      if (m.point_velocity_ramps.back().time > 0.0) {
+        // A ramped group starts at rest on its held axes, as a DPD one does.
+        pv.velocity = {0.0, 0.0, 0.0};
+        for (size_t i = 0; i < m.points.size(); ++i) {
+          if (!m.points.in_group(i, pv.group_mask)) continue;
+          for (size_t a = 0; a < 3; ++a) {
+            if (pv.axis[a]) m.points.v[i][a] = 0.0;
+          }
+        }
+      }
       m.bc.point_velocities.push_back(pv);
       m.point_velocity_groups.push_back(group);
     } else if (kind == "group_force") {

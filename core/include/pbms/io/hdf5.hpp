@@ -47,7 +47,10 @@ class Handle {
 Handle open_or_create(const std::string& path);
 // With a communicator of more than one rank the file is created collectively
 // through MPI-IO, and its handle is not closed while an exception unwinds:
-// the close is collective, and the other ranks may never come to it.
+// the close is collective, and the other ranks may never come to it. A
+// request that all ranks fail together (StageContext::fail_together) and
+// survive would leave such a file open until MPI_Finalize; none writes one
+// today.
 Handle create_truncate(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
 // The group at `path` (slash separated), creating missing parents.
 Handle require_group(hid_t parent, const std::string& path);
