@@ -858,15 +858,6 @@ void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
     }
   }
   apply_node_constraints(bc, velocity_, true);
-  share_momentum_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
-  for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
-    for (size_t i = 0; i < sums_.size(); ++i) {
-      // rigid_ holds each node's whole sum on every copy (sum_rigid).
-      if (rigid_[c][i] > 0.0 && unique_node_[i]) {
-        add_scaled(share_momentum_[c], rigid_[c][i], acceleration_[i]);
-      }
-    }
-  }
   hold_rigid_nodes(bc, dt);
   for (size_t i = 0; i < sums_.size(); ++i) {
     if (sums_[i].lanes[sums::kMass] > mass_floor_) {
@@ -878,14 +869,19 @@ void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
 
 // Nodes of a prescribed-velocity group move at its velocity; the force
 // that holds each there, counted once per node over all ranks, is the
-// group's reaction.
+// group's reaction. Also the group's share of the nodes' momentum before
+// the hold (held_share_momentum).
 void MpmSolver::hold_rigid_nodes(const BoundaryConditions& bc, double dt) {
   const double kf = opt_.units.force_per_mass_to_accel;
   reaction_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
+  share_momentum_.assign(bc.point_velocities.size(), {0.0, 0.0, 0.0});
   for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
     const auto& pv = bc.point_velocities[c];
     for (size_t i = 0; i < sums_.size(); ++i) {
       if (rigid_[c][i] <= 0.0) continue;
+      // acceleration_ still holds the velocity before the update; rigid_
+      // holds each node's whole sum on every copy (sum_rigid).
+      if (unique_node_[i]) add_scaled(share_momentum_[c], rigid_[c][i], acceleration_[i]);
       const double mass = sums_[i].lanes[sums::kMass];
       for (size_t a = 0; a < 3; ++a) {
         if (!pv.axis[a]) continue;
