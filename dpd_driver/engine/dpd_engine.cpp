@@ -122,24 +122,6 @@ bool DpdEngine::list_is_stale() {
   return moved > half_skin * half_skin;
 }
 
-double DpdEngine::pair_energy_without_partners() {
-  // A partner moved far beyond the cutoff drops out of every pair of the
-  // list (its image shifts are fixed vectors), so the same list gives the
-  // particles' own energy. The positions are put back exactly.
-  constexpr double kOutOfReach = 1.0e7;  // Å
-  const std::size_t begin = with_partners_ ? partner_begin_ : particles_.size();
-  const std::vector<Vec3> kept(particles_.x.begin() + static_cast<std::ptrdiff_t>(begin),
-                               particles_.x.end());
-  for (std::size_t i = begin; i < particles_.size(); ++i) particles_.x[i][0] += kOutOfReach;
-  scratch_forces_.swap(particles_.f);
-  particles_.f.assign(particles_.size(), {0.0, 0.0, 0.0});
-  double energy = pair_->compute(particles_, list_, Tally::kEnergyAndVirial).energy;
-  scratch_forces_.swap(particles_.f);
-  std::copy(kept.begin(), kept.end(), particles_.x.begin() + static_cast<std::ptrdiff_t>(begin));
-  allreduce_sum(comm(), &energy, 1);
-  return energy;
-}
-
 std::vector<Vec3> DpdEngine::partner_forces() const {
   const auto begin = particles_.f.begin() + static_cast<std::ptrdiff_t>(partner_begin_);
   return {begin, begin + static_cast<std::ptrdiff_t>(partners_.size())};
@@ -155,7 +137,7 @@ void DpdEngine::rebuild() {
   for (std::size_t k = 0; k < partners_.size(); ++k) {
     particles_.add(partners_.id[k], partners_.type[k], partners_.x[k], partners_.v[k]);
   }
-  list_.build(particles_, domain_.list_box(), owned_);
+  list_.build(particles_, domain_.list_box(), owned_, partner_begin_);
   // The build wrapped the partners into the box; moved partners keep it.
   partner_offset_.resize(partners_.size());
   for (std::size_t k = 0; k < partners_.size(); ++k) {
@@ -228,10 +210,12 @@ PairResult DpdEngine::compute_forces(Tally tally) {
   particles_.zero_forces();
   if (friction_in_force_loop(settings_)) {
     // Half-step velocities (dpd_integrator.hpp), ghosts' included.
-    return add_conservative_and_friction_forces(*pair_, particles_, particles_.v, list_,
-                                                settings_.friction, step_, settings_.dt, tally);
+    last_tally_ = add_conservative_and_friction_forces(
+        *pair_, particles_, particles_.v, list_, settings_.friction, step_, settings_.dt, tally);
+  } else {
+    last_tally_ = pair_->compute(particles_, list_, tally);
   }
-  return pair_->compute(particles_, list_, tally);
+  return last_tally_;
 }
 
 void DpdEngine::step() {

@@ -124,13 +124,13 @@ class DpdEngine {
   // Scales the free particles' velocities towards T over tau (Berendsen).
   void berendsen(double temperature, double tau);
 
-  // All-rank sums; with_potential costs one extra pair pass.
+  // All-rank sums; with_potential costs one extra pair pass. The potential
+  // counts each pair with a partner in full.
   [[nodiscard]] ThermoState thermo(bool with_potential);
-  // All-rank conservative pair energy of the particles among themselves,
-  // eV: thermo's potential without the pairs with partners, so that a
-  // concurrent run's ledger shows the interface's pair energy on its own
-  // line. One extra pair pass; collective.
-  [[nodiscard]] double pair_energy_without_partners();
+  // This rank's tallies of the last compute_forces (zero unless it was
+  // asked to tally): the energy (and virial) of the positions, and the
+  // partners, the forces were computed at.
+  [[nodiscard]] const PairResult& last_tally() const { return last_tally_; }
 
   [[nodiscard]] DpdParticles& particles() { return particles_; }
   [[nodiscard]] const DpdParticles& particles() const { return particles_; }
@@ -168,6 +168,7 @@ class DpdEngine {
   bool with_partners_ = false;
   bool partners_changed_ = false;
   std::vector<Vec3> partner_offset_;  // the list build's wrap of each partner
+  PairResult last_tally_;
 };
 
 }  // namespace pbms::dpd

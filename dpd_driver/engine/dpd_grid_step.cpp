@@ -242,7 +242,7 @@ void DpdGridStep::compute_forces() {
   // Also here, for what changed since the last step (a thermostat's
   // velocities, which the ghosts' friction reads).
   refresh_neighbours();
-  engine_.compute_forces();
+  engine_.compute_forces(tally_);
   load_points();
 }
 

@@ -95,6 +95,12 @@ class DpdGridStep {
   // the next step on (a grip on a velocity ramp).
   void set_rigid_velocity(std::uint32_t mask, const mpm::Vec3& v);
 
+  // Whether each compute_forces also tallies the pair energy
+  // (DpdEngine::last_tally), for a ledger kept every step: a few operations
+  // a pair in the pass the step makes anyway, where a pass of its own would
+  // cost a whole one.
+  void tally_each_step(bool on) { tally_ = on ? Tally::kEnergy : Tally::kForcesOnly; }
+
   // Whether the next compute_forces will rebuild the neighbour list (a
   // particle moved more than half the skin, or left its rank's cells).
   // Collective over the engine's ranks.
@@ -137,6 +143,7 @@ class DpdGridStep {
   double point_volume_ = 0.0;  // Å³; only a stress term uses it, and that is zero
   mpm::BoundaryConditions bc_;
   std::vector<mpm::Vec3> forces_;
+  Tally tally_ = Tally::kForcesOnly;
 };
 
 }  // namespace pbms::dpd

@@ -40,10 +40,11 @@ HalfNeighbourList::HalfNeighbourList(double cutoff, double skin, bool keep_pair_
   if (!(skin >= 0.0)) throw Error("neighbour list: skin must be >= 0 Å");
 }
 
-void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
-                              std::size_t owned) {
+void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box, std::size_t owned,
+                              std::size_t partners_from) {
   const std::size_t n = particles.size();
   const std::size_t rows = std::min(owned, n);
+  partners_from_ = std::min(partners_from, n);
   if (n > kMaxParticles) {
     throw Error("neighbour list: " + std::to_string(n) + " particles on one rank, at most " +
                 std::to_string(kMaxParticles));

@@ -43,8 +43,14 @@ class HalfNeighbourList {
   // once (under the owned particle), never a ghost-ghost pair, and has
   // `owned` rows; a rank adds forces only to its owned particles, so a pair
   // that straddles two ranks is evaluated on both (no reverse communication).
-  void build(DpdParticles& particles, const OrthogonalBox& box, std::size_t owned = kAllOwned);
+  //
+  // Particles from index `partners_from` on (at or after the ghosts) are
+  // another program's points (a concurrent run's partners): each of their
+  // pairs is evaluated on one rank only, which the tallies must know.
+  void build(DpdParticles& particles, const OrthogonalBox& box, std::size_t owned = kAllOwned,
+             std::size_t partners_from = kNoPartners);
   static constexpr std::size_t kAllOwned = static_cast<std::size_t>(-1);
+  static constexpr std::size_t kNoPartners = static_cast<std::size_t>(-1);
 
   // True when some owned particle has moved more than skin/2 since the last
   // build, so that a pair now inside the cutoff might be missing; true
@@ -60,6 +66,9 @@ class HalfNeighbourList {
     return first_.empty() ? 0 : first_.size() - 1;
   }
   [[nodiscard]] std::size_t pair_count() const { return entries_.size(); }
+  // The index of the first partner at the last build (the particle count
+  // when there were none).
+  [[nodiscard]] std::size_t partners_from() const { return partners_from_; }
   [[nodiscard]] long build_count() const { return builds_; }
 
   // Neighbours of particle i are entries [first(i), first(i + 1)).
@@ -89,6 +98,7 @@ class HalfNeighbourList {
   double cutoff_;
   double skin_;
   long builds_ = 0;
+  std::size_t partners_from_ = 0;
   std::vector<std::size_t> first_;
   std::vector<Entry> entries_;
   bool keep_pair_ids_;

@@ -34,7 +34,8 @@ namespace pbms::dpd {
 template <Tally kTally, bool kFriction, class Kernel>
 PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
                            const HalfNeighbourList& list, const PairFrictionTerm* friction) {
-  constexpr bool kTallied = kTally == Tally::kEnergyAndVirial;
+  constexpr bool kTallied = kTally != Tally::kForcesOnly;
+  constexpr bool kVirial = kTally == Tally::kEnergyAndVirial;
   // Pairs pass in batches through separate loops: gather the pairs inside
   // the cutoff, evaluate the pair formula (and draw the noise), scatter the
   // forces. The middle loops have no memory dependence between pairs, so a
@@ -60,7 +61,8 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
   const Vec3* v = kFriction ? friction->velocity : nullptr;
   const std::uint64_t* list_ids = list.pair_ids();
 
-  double energy = 0.0;
+  const std::size_t partners_from = list.partners_from();
+  double energy = 0.0, partner_energy = 0.0;
   double vxx = 0.0, vyy = 0.0, vzz = 0.0, vxy = 0.0, vxz = 0.0, vyz = 0.0;
 
   // Not inlined into the gather loop below: inlined, its register demand
@@ -121,16 +123,21 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
       f[j][2] -= fz;
       if constexpr (kTallied) {
         // A pair with a ghost is evaluated on both its ranks; each
-        // tallies half, so that the sums over ranks count it once.
-        const double w = j < n ? 1.0 : 0.5;
+        // tallies half, so that the sums over ranks count it once. A pair
+        // with a partner is evaluated on one rank only.
+        const bool with_partner = j >= partners_from;
+        const double w = j < n || with_partner ? 1.0 : 0.5;
         energy += w * pair_energy[m];
-        const double wf = w * force_over_r[m];
-        vxx += wf * dx[m] * dx[m];
-        vyy += wf * dy[m] * dy[m];
-        vzz += wf * dz[m] * dz[m];
-        vxy += wf * dx[m] * dy[m];
-        vxz += wf * dx[m] * dz[m];
-        vyz += wf * dy[m] * dz[m];
+        partner_energy += with_partner ? pair_energy[m] : 0.0;
+        if constexpr (kVirial) {
+          const double wf = w * force_over_r[m];
+          vxx += wf * dx[m] * dx[m];
+          vyy += wf * dy[m] * dy[m];
+          vzz += wf * dz[m] * dz[m];
+          vxy += wf * dx[m] * dy[m];
+          vxz += wf * dx[m] * dz[m];
+          vyz += wf * dy[m] * dz[m];
+        }
       }
     }
     f[current][0] += fxi;
@@ -170,29 +177,41 @@ PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
   PairResult result;
   if constexpr (kTallied) {
     result.energy = energy;
-    result.virial = {vxx, vyy, vzz, vxy, vxz, vyz};
+    result.partner_energy = partner_energy;
   }
+  if constexpr (kVirial) result.virial = {vxx, vyy, vzz, vxy, vxz, vyz};
   return result;
 }
 
 // Runs the loop with the tally and the friction term chosen at run time,
-// compiled for all four.
+// compiled for all six.
 template <class Kernel>
 PairResult pair_force_loop(const Kernel& kernel, DpdParticles& particles,
                            const HalfNeighbourList& list, Tally tally,
                            const PairFrictionTerm* friction) {
-  const bool tallied = tally == Tally::kEnergyAndVirial;
   if (friction != nullptr) {
     // An empty list (a rank with no particles) may hold no id array at all.
     if (list.pair_ids() == nullptr && list.pair_count() > 0) {
       throw Error("DPD thermostat: the neighbour list was built without the pair ids");
     }
-    return tallied
-               ? pair_force_loop<Tally::kEnergyAndVirial, true>(kernel, particles, list, friction)
-               : pair_force_loop<Tally::kForcesOnly, true>(kernel, particles, list, friction);
+    switch (tally) {
+      case Tally::kForcesOnly:
+        return pair_force_loop<Tally::kForcesOnly, true>(kernel, particles, list, friction);
+      case Tally::kEnergy:
+        return pair_force_loop<Tally::kEnergy, true>(kernel, particles, list, friction);
+      case Tally::kEnergyAndVirial:
+        return pair_force_loop<Tally::kEnergyAndVirial, true>(kernel, particles, list, friction);
+    }
   }
-  return tallied ? pair_force_loop<Tally::kEnergyAndVirial, false>(kernel, particles, list, nullptr)
-                 : pair_force_loop<Tally::kForcesOnly, false>(kernel, particles, list, nullptr);
+  switch (tally) {
+    case Tally::kForcesOnly:
+      return pair_force_loop<Tally::kForcesOnly, false>(kernel, particles, list, nullptr);
+    case Tally::kEnergy:
+      return pair_force_loop<Tally::kEnergy, false>(kernel, particles, list, nullptr);
+    case Tally::kEnergyAndVirial:
+      break;
+  }
+  return pair_force_loop<Tally::kEnergyAndVirial, false>(kernel, particles, list, nullptr);
 }
 
 }  // namespace pbms::dpd

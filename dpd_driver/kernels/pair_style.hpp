@@ -23,15 +23,20 @@ struct PairStyleParameters {
   std::map<std::string, std::string, std::less<>> texts;
 };
 
-// Whether a call must also sum energy and virial. Forces alone are what most
-// steps need, and the tallies cost about a tenth of a cheap pair formula.
-enum class Tally { kForcesOnly, kEnergyAndVirial };
+// Whether a call must also sum energy, or energy and virial. Forces alone
+// are what most steps need; the energy alone is what a ledger kept every
+// step needs, and costs less than the virial's six sums per pair.
+enum class Tally { kForcesOnly, kEnergy, kEnergyAndVirial };
 
 struct PairResult {
   double energy = 0.0;  // eV; zero unless tallied
+  // The part of energy from pairs with another program's points (the
+  // list's partners), eV. Such a pair is evaluated on one rank only and
+  // tallied there in full.
+  double partner_energy = 0.0;
   // Σ over pairs of r_ij ⊗ f_ij, with r_ij = x_i − x_j and f_ij the force on
   // i from j, in eV; xx, yy, zz, xy, xz, yz as LAMMPS orders them. Pressure is
-  // (2 E_kin + trace) / (3 V). Zero unless tallied.
+  // (2 E_kin + trace) / (3 V). Zero unless tallied with kEnergyAndVirial.
   std::array<double, 6> virial{};
 };
 

@@ -61,7 +61,7 @@ PairResult SuttonChen::compute_forces(DpdParticles& particles, const HalfNeighbo
   kernel_.half_inverse_sqrt_density = half_inverse_sqrt_density_.data();
 
   PairResult result = pair_force_loop(kernel_, particles, list, tally, friction);
-  if (tally == Tally::kEnergyAndVirial) result.energy -= kernel_.epsilon * kernel_.c * embedding;
+  if (tally != Tally::kForcesOnly) result.energy -= kernel_.epsilon * kernel_.c * embedding;
   return result;
 }
 

@@ -171,10 +171,10 @@ config::StageKindSpec ConcurrentStage::spec() {
       {"tension_curve", OutputSpec::Shape::kTable, "",
        "Strain, mean axial stress and grip stress (tension)"},
       {"dpd_ledger", OutputSpec::Shape::kTable, "",
-       "Every sample, the DPD part's mass, momentum, kinetic, pair (potential_energy), internal "
+       "Every step, the DPD part's mass, momentum, kinetic, pair (potential_energy), internal "
        "and DPD-MPM interface pair energy"},
       {"mpm_ledger", OutputSpec::Shape::kTable, "",
-       "Every sample, the MPM part's mass, momentum, kinetic, stored and dissipated energy"},
+       "Every step, the MPM part's mass, momentum, kinetic, stored and dissipated energy"},
       {"interface", OutputSpec::Shape::kTable, "", "The wave.opening planes' jump against time"},
       {"dpd_exchange", OutputSpec::Shape::kTable, "",
        "Per dpd_driver rank: messages, bytes sent and received, seconds packing and waiting, of "

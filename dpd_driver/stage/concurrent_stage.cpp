@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
@@ -16,6 +17,7 @@
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
+#include "pbms/coupling/conservation_ledger.hpp"
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/exchange_report.hpp"
@@ -141,6 +143,33 @@ class DpdPartTrajectory {
   std::array<double, 3> edges_{};
 };
 
+// The DPD part's conservation ledger. A row's pair energies are tallied by
+// the force pass after it (the next step's, or the scheme's close), the
+// first one at the row's positions and with the partners there.
+class DpdLedger {
+ public:
+  explicit DpdLedger(MPI_Comm comm)
+      : ledger_(comm, {"potential_energy", "interface_pair_energy", "internal_energy"}) {}
+  void motion(double t, const coupling::ParticleView& now, const DpdEngine& e) {
+    pending_ = ledger_.motion_of(t, now);
+    const auto& u = e.particles().internal_energy;
+    pending_.energies[2] =
+        std::accumulate(u.begin(), u.begin() + static_cast<long>(e.owned()), 0.0);
+  }
+  // Collective over the part's ranks.
+  void energies(const DpdEngine& e) {
+    const PairResult& tally = e.last_tally();
+    pending_.energies[0] = tally.energy - tally.partner_energy;
+    pending_.energies[1] = tally.partner_energy;
+    ledger_.add(pending_);
+  }
+  [[nodiscard]] const coupling::ConservationLedger& table() const { return ledger_; }
+
+ private:
+  coupling::ConservationLedger ledger_;
+  coupling::ConservationLedger::Row pending_;
+};
+
 // The planes' displacement jump since the start: at the end, its largest
 // opening (the planes apart) and its largest closing (the planes nearer,
 // which the compressive front does to any two planes, interface or not).
@@ -189,27 +218,12 @@ void ConcurrentStage::run(StageContext& ctx) {
       coupling::swap_scalar(inter, ctx.comm(),
                             part.dpd_particles() * engine.particles().mass_per_type[0]) +
       part.dpd_particles() * engine.particles().mass_per_type[0];
-  std::vector<double> opening_t, opening, potential, interface_energy, internal, mass;
-  std::array<double, 3> p0{};
-  double worst_dp = 0.0;
+  std::vector<double> opening_t, opening;
+  DpdLedger ledger(ctx.comm());
+  grid.tally_each_step(true);
   auto sample = [&](std::int64_t n) {
     const auto v = view.view(engine);
     probes.sample(n, v);
-    // DPD pairs, and half of each pair with an MPM point (the other half
-    // would be the MPM side's; its continuum energy is the stored energy).
-    const ThermoState thermo = engine.thermo(true);            // one extra pair pass a sample
-    const double own = engine.pair_energy_without_partners();  // and one more
-    potential.push_back(own);
-    interface_energy.push_back(thermo.potential - own);
-    internal.push_back(thermo.internal);
-    mass.push_back(probes.mass());
-    std::array<double, 3> total{};
-    for (std::size_t a = 0; a < 3; ++a) {
-      total[a] =
-          probes.momentum()[a] + coupling::swap_scalar(inter, ctx.comm(), probes.momentum()[a]);
-    }
-    if (n == 0) p0 = total;
-    for (std::size_t a = 0; a < 3; ++a) worst_dp = std::max(worst_dp, std::abs(total[a] - p0[a]));
     if (tension) {
       const auto& reactions = grid.solver().point_velocity_reactions();
       const auto masks = motion_masks(part);
@@ -217,7 +231,7 @@ void ConcurrentStage::run(StageContext& ctx) {
       double f[2] = {coupling::grip_force(ctx.comm(), reactions, masks, tension->left, a),
                      coupling::grip_force(ctx.comm(), reactions, masks, tension->right, a)};
       for (double& x : f) x += coupling::swap_scalar(inter, ctx.comm(), x);
-      const double w = thermo.virial[static_cast<std::size_t>(a)];
+      const double w = engine.thermo(true).virial[static_cast<std::size_t>(a)];  // a pair pass
       const double sv = coupling::swap_scalar(inter, ctx.comm(), 0.0);
       tension->add(static_cast<double>(n) * cp.time_step, w, sv, f[0], f[1]);
     }
@@ -236,13 +250,17 @@ void ConcurrentStage::run(StageContext& ctx) {
     trajectory->write(engine, 0, 0.0);
   }
   probes.track(0, view.view(engine));
+  ledger.motion(0.0, view.view(engine), engine);
   sample(0);
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kDpd));
-    probes.track(n, view.view(engine));
+    ledger.energies(engine);
+    const auto now = view.view(engine);
+    ledger.motion(static_cast<double>(n) * cp.time_step, now, engine);
+    probes.track(n, now);
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
     if (trajectory && (n % cp.particles_every == 0 || n == cp.steps)) {
       trajectory->write(engine, n, static_cast<double>(n) * cp.time_step);
@@ -251,6 +269,8 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  scheme.close();
+  ledger.energies(engine);
 
   auto& r = ctx.results();
   if (trajectory)
@@ -263,16 +283,13 @@ void ConcurrentStage::run(StageContext& ctx) {
   const double a = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());
   const double rho = 4.0 * material["mass"].as<double>() / (a * a * a);
   const double c = std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
-  r.add_scalar("momentum_change", worst_dp / (body_mass * c), "1");
+  r.add_scalar("momentum_change", ledger.table().momentum_drift(inter) / (body_mass * c), "1");
   if (cp.opening && !opening.empty()) report_opening(r, opening_t, opening);
   if (cp.steps > 0 && seconds > 0.0) {
     r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
   }
   probes.report(r, "dpd");
-  r.add_column("dpd_ledger", "potential_energy", "eV", potential);
-  r.add_column("dpd_ledger", "interface_pair_energy", "eV", interface_energy);
-  r.add_column("dpd_ledger", "internal_energy", "eV", internal);
-  r.add_column("dpd_ledger", "mass", "g/mol", mass);
+  ledger.table().report(r, "dpd");
   coupling::report_exchanges(r, ctx.comm(), "dpd", link.nodal_profile(), link.partner_profile(),
                              cp.steps, seconds);
   if (tension) tension->report(r);

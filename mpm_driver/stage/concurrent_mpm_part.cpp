@@ -11,6 +11,7 @@
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
+#include "pbms/coupling/conservation_ledger.hpp"
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/exchange_report.hpp"
@@ -92,13 +93,16 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   coupling::ConcurrentProbes probes(ctx.comm(), cp, groups, 0.5 * a, view_of(engine.points()));
   const double mass = static_cast<double>(engine.total_points()) * material["mass"].as<double>();
   (void)coupling::swap_scalar(inter, ctx.comm(), mass);
-  std::vector<double> stored, dissipated, point_mass;
+  coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"});
+  auto add_to_ledger = [&](std::int64_t n) {
+    auto row = ledger.motion_of(static_cast<double>(n) * cp.time_step, view_of(engine.points()));
+    const EnergySummary energy = engine.solver().energy(engine.points());
+    row.energies = {energy.stored, energy.dissipated};
+    ledger.add(std::move(row));
+  };
   auto sample = [&](std::int64_t n) {
     const auto v = view_of(engine.points());
     probes.sample(n, v);
-    for (std::size_t k = 0; k < 3; ++k) {
-      (void)coupling::swap_scalar(inter, ctx.comm(), probes.momentum()[k]);
-    }
     if (cp.tension) {
       const MpmModel& m = engine.model();
       std::vector<std::uint32_t> masks;
@@ -121,12 +125,6 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     if (cp.opening) {
       (void)coupling::swap_values(inter, ctx.comm(), probes.opening_moments(v));
     }
-    const EnergySummary energy = engine.solver().energy(engine.points());
-    double e[2] = {energy.stored, energy.dissipated};
-    MPI_Allreduce(MPI_IN_PLACE, e, 2, MPI_DOUBLE, MPI_SUM, ctx.comm());
-    stored.push_back(e[0]);
-    dissipated.push_back(e[1]);
-    point_mass.push_back(probes.mass());
   };
   std::unique_ptr<GridFieldWriter> grid_out;
   std::unique_ptr<H5mdWriter> points_out;
@@ -143,6 +141,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
         ctx.comm(), (ctx.stage_dir() / "mpm_grid").string(), cp.grid, engine.owned_nodes());
   }
   probes.track(0, view_of(engine.points()));
+  add_to_ledger(0);
   sample(0);
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
@@ -150,6 +149,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kMpm));
     probes.track(n, view_of(engine.points()));
+    add_to_ledger(n);
     if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
     if (grid_out && (n % cp.particles_every == 0 || n == cp.steps)) {
       write_grid(*grid_out, engine, n, static_cast<double>(n) * cp.time_step);
@@ -158,6 +158,8 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  scheme.close();
+  (void)ledger.momentum_drift(inter);  // dpd_driver reports it
   auto& r = ctx.results();
   if (grid_out) {
     r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_particles.h5md").string());
@@ -165,9 +167,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.xdmf").string());
   }
   probes.report(r, "mpm");
-  r.add_column("mpm_ledger", "stored_energy", "eV", stored);
-  r.add_column("mpm_ledger", "dissipated_energy", "eV", dissipated);
-  r.add_column("mpm_ledger", "mass", "g/mol", point_mass);
+  ledger.report(r, "mpm");
   coupling::report_exchanges(r, ctx.comm(), "mpm", link.nodal_profile(), link.partner_profile(),
                              cp.steps, seconds);
 }

@@ -218,6 +218,45 @@ std::pair<double, double> dimer(PairStyle& style, double r) {
 
 }  // namespace
 
+// A concurrent run's rank holds owned particles, then ghosts (pairs with
+// them are evaluated on both ranks, so each tallies half), then another
+// program's points (evaluated on this rank only: tallied in full, and
+// apart as partner_energy).
+TEST(DpdPairStyles, APairWithAPartnerIsTalliedOnceAndApart) {
+  Morse morse(0.8, 1.1, 5.11, kCutoff, true);
+  OrthogonalBox box;
+  box.hi = {50.0, 50.0, 50.0};
+  box.periodic = {false, false, false};
+  DpdParticles p;
+  p.mass_per_type = {1.0, 1.0};
+  p.add(1, 0, {10.0, 10.0, 10.0});        // owned
+  p.add(2, 0, {14.5, 10.0, 10.0});        // a ghost
+  p.add(3, 1, {10.0, 15.2, 10.0});        // a partner
+  p.add(4, 1, {10.0, 10.0, 10.0 + 6.3});  // a partner
+  HalfNeighbourList list(morse.cutoff(), 0.0);
+  list.build(p, box, 1, 2);
+  const double ghost = dimer(morse, 4.5).first;
+  const double partners = dimer(morse, 5.2).first + dimer(morse, 6.3).first;
+  const PairResult r = energy_forces(morse, p, list);
+  EXPECT_NEAR(r.energy, 0.5 * ghost + partners, 1e-13);
+  EXPECT_NEAR(r.partner_energy, partners, 1e-13);
+  // The partners' virial, too, counts in full: yy and zz have no ghost term.
+  const double fy = p.f[0][1], fz = p.f[0][2];
+  EXPECT_NEAR(r.virial[1], -5.2 * fy, 1e-12);
+  EXPECT_NEAR(r.virial[2], -6.3 * fz, 1e-12);
+  // The energy alone, as a ledger kept every step asks for it.
+  p.zero_forces();
+  const PairResult energy_only = morse.compute(p, list, Tally::kEnergy);
+  EXPECT_EQ(energy_only.energy, r.energy);
+  EXPECT_EQ(energy_only.partner_energy, r.partner_energy);
+  EXPECT_EQ(energy_only.virial, (std::array<double, 6>{}));
+  // Without partners the same list tallies every pair with a ghost by half.
+  list.build(p, box, 1);
+  const PairResult all_ghosts = energy_forces(morse, p, list);
+  EXPECT_NEAR(all_ghosts.energy, 0.5 * (ghost + partners), 1e-13);
+  EXPECT_EQ(all_ghosts.partner_energy, 0.0);
+}
+
 TEST(DpdPairStyles, MorseMatchesTheLammpsDefinition) {
   Morse morse(0.8, 1.1, 5.11, kCutoff, false);
   EXPECT_NEAR(dimer(morse, 5.11).first, -0.8, 1e-15);

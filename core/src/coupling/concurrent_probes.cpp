@@ -8,7 +8,6 @@
 #include "pbms/analysis/first_crossing.hpp"
 #include "pbms/analysis/front_arrival.hpp"
 #include "pbms/mpi/comm.hpp"
-#include "pbms/units.hpp"
 
 namespace pbms::coupling {
 namespace {
@@ -137,23 +136,9 @@ void ConcurrentProbes::track(std::int64_t step, const ParticleView& now) {
 }
 
 void ConcurrentProbes::sample(std::int64_t step, const ParticleView& now) {
-  double s[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // 2 E_kin / mvv2e, momentum, mass
-  for (std::size_t i = 0; i < now.count; ++i) {
-    s[4] += now.mass[i];
-    const Vec3& v = now.v[i];
-    s[0] += now.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (std::size_t a = 0; a < 3; ++a) s[a + 1] += now.mass[i] * v[a];
+  if (p_.profile_every > 0 && step % p_.profile_every == 0) {
+    profile(static_cast<double>(step) * p_.time_step, now);
   }
-  sum_over(comm_, s, 5);
-  mass_ = s[4];
-  const double t = static_cast<double>(step) * p_.time_step;
-  sample_t_.push_back(t);
-  kinetic_.push_back(0.5 * s[0] * units::kMvv2e);
-  px_.push_back(s[1]);
-  py_.push_back(s[2]);
-  pz_.push_back(s[3]);
-  momentum_ = {s[1], s[2], s[3]};
-  if (p_.profile_every > 0 && step % p_.profile_every == 0) profile(t, now);
 }
 
 // The mean displacement along the axis of the particles starting in each
@@ -178,11 +163,6 @@ void ConcurrentProbes::profile(double t, const ParticleView& now) {
 }
 
 void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const {
-  r.add_column(prefix + "_ledger", "time", "ps", sample_t_);
-  r.add_column(prefix + "_ledger", "kinetic_energy", "eV", kinetic_);
-  r.add_column(prefix + "_ledger", "momentum_x", "g/mol*Å/ps", px_);
-  r.add_column(prefix + "_ledger", "momentum_y", "g/mol*Å/ps", py_);
-  r.add_column(prefix + "_ledger", "momentum_z", "g/mol*Å/ps", pz_);
   if (!tracked_.empty()) {
     r.add_column(prefix + "_slabs", "time", "ps", track_t_);
     for (std::size_t k = 0; k < tracked_.size(); ++k) {

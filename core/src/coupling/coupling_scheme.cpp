@@ -21,6 +21,11 @@ void CouplingScheme::step() {
   for (GridSide* s : sides_) s->finish_step();
 }
 
+void CouplingScheme::close() {
+  if (treatment_ != InterfaceTreatment::kNone) link_.share_partners();
+  for (GridSide* s : sides_) s->compute_forces();
+}
+
 void CouplingScheme::step_naming(const std::string& part) {
   try {
     step();

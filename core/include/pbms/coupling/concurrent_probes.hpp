@@ -1,8 +1,8 @@
 // What each side of a concurrent stage measures of its own particles, the
 // same way on both: the slabs' first motion and the wave speed between
-// them, the displacement of the interface's lattice plane, the kinetic
-// energy and momentum (the ledger), and displacement profiles along the
-// wave's axis. Sums run over the side's own ranks; each side reports under
+// them, the displacement of the interface's lattice planes, and
+// displacement profiles along the wave's axis (the conservation ledger is
+// ConservationLedger's). Sums run over the side's own ranks; each side reports under
 // its own prefix ("dpd", "mpm").
 #pragma once
 
@@ -46,8 +46,8 @@ class ConcurrentProbes {
 
   // Every step: the tracked slabs' displacement along the axis.
   void track(std::int64_t step, const ParticleView& now);
-  // Every sample_every steps: the ledger's kinetic energy (eV) and momentum,
-  // and a profile every profile_every steps.
+  // Every sample_every steps: a profile when the step is one of
+  // profile_every.
   void sample(std::int64_t step, const ParticleView& now);
   // The displacement of a group's centre of mass along the axis since the
   // start, NaN when this side has none of it.
@@ -63,10 +63,6 @@ class ConcurrentProbes {
   // from both sides' shares; NaN while a plane has no particles.
   [[nodiscard]] static double opening(const PlaneMoments& mine, const PlaneMoments& theirs);
 
-  [[nodiscard]] double kinetic_energy() const { return kinetic_.empty() ? 0.0 : kinetic_.back(); }
-  [[nodiscard]] const std::array<double, 3>& momentum() const { return momentum_; }
-  // This side's mass at the last sample, g/mol.
-  [[nodiscard]] double mass() const { return mass_; }
   // Adds `<prefix>_` scalars and tables.
   void report(StageResults& r, const std::string& prefix) const;
 
@@ -90,9 +86,6 @@ class ConcurrentProbes {
   std::vector<std::vector<double>> tracked_s_;
   std::vector<double> tracked_at_;  // centre of mass along the axis at the start, Å
   std::vector<double> track_t_;
-  std::vector<double> sample_t_, kinetic_, px_, py_, pz_;
-  std::array<double, 3> momentum_{};
-  double mass_ = 0.0;
   std::vector<double> profile_t_;
   std::vector<std::vector<double>> profiles_;
 };

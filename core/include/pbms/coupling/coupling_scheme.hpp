@@ -24,6 +24,11 @@ class CouplingScheme {
   // The same, adding `part` (which part of the body this process advances)
   // to the message of a step that fails, keeping the failure's type.
   void step_naming(const std::string& part);
+  // After the last step: the partners where the run ended and the particle
+  // sides' forces there, so that a tallied force pass also sees the final
+  // state (a step's tally sees the state before it). Collective over both
+  // sides' ranks; changes no position or velocity.
+  void close();
 
   [[nodiscard]] InterfaceTreatment treatment() const { return treatment_; }
 

@@ -1,0 +1,80 @@
+#include "pbms/coupling/conservation_ledger.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "pbms/coupling/scalar_across_programs.hpp"
+#include "pbms/error.hpp"
+#include "pbms/mpi/comm.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::coupling {
+
+ConservationLedger::ConservationLedger(MPI_Comm comm, std::vector<std::string> energies)
+    : comm_(comm), names_(std::move(energies)), energies_(names_.size()) {}
+
+ConservationLedger::Row ConservationLedger::motion_of(double time, const ParticleView& now) const {
+  Row r;
+  r.time = time;
+  double twice_kinetic = 0.0;
+  for (std::size_t i = 0; i < now.count; ++i) {
+    const double m = now.mass[i];
+    const Vec3& v = now.v[i];
+    r.mass += m;
+    twice_kinetic += m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (std::size_t a = 0; a < 3; ++a) r.momentum[a] += m * v[a];
+  }
+  r.kinetic = 0.5 * twice_kinetic * units::kMvv2e;
+  r.energies.assign(names_.size(), 0.0);
+  return r;
+}
+
+void ConservationLedger::add(Row mine) {
+  if (mine.energies.size() != names_.size()) {
+    throw Error(fmt::format("conservation ledger: a row with {} energies for {} names",
+                            mine.energies.size(), names_.size()));
+  }
+  std::vector<double> sums{mine.mass, mine.momentum[0], mine.momentum[1], mine.momentum[2],
+                           mine.kinetic};
+  sums.insert(sums.end(), mine.energies.begin(), mine.energies.end());
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_DOUBLE,
+                           MPI_SUM, comm_),
+             "MPI_Allreduce (conservation ledger)");
+  time_.push_back(mine.time);
+  mass_.push_back(sums[0]);
+  for (std::size_t a = 0; a < 3; ++a) momentum_[a].push_back(sums[1 + a]);
+  kinetic_.push_back(sums[4]);
+  for (std::size_t k = 0; k < names_.size(); ++k) energies_[k].push_back(sums[5 + k]);
+}
+
+double ConservationLedger::momentum_drift(MPI_Comm inter) const {
+  std::vector<double> mine;
+  for (const auto& column : momentum_) mine.insert(mine.end(), column.begin(), column.end());
+  std::vector<double> theirs(mine.size());
+  swap_values(inter, comm_, mine, theirs);
+  const std::size_t n = rows();
+  double worst = 0.0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double* p = &mine[a * n];
+    const double* q = &theirs[a * n];
+    for (std::size_t k = 0; k < n; ++k)
+      worst = std::max(worst, std::abs(p[k] + q[k] - p[0] - q[0]));
+  }
+  return worst;
+}
+
+void ConservationLedger::report(StageResults& r, const std::string& prefix) const {
+  const std::string table = prefix + "_ledger";
+  r.add_column(table, "time", "ps", time_);
+  r.add_column(table, "mass", "g/mol", mass_);
+  r.add_column(table, "momentum_x", "g/mol*Å/ps", momentum_[0]);
+  r.add_column(table, "momentum_y", "g/mol*Å/ps", momentum_[1]);
+  r.add_column(table, "momentum_z", "g/mol*Å/ps", momentum_[2]);
+  r.add_column(table, "kinetic_energy", "eV", kinetic_);
+  for (std::size_t k = 0; k < names_.size(); ++k)
+    r.add_column(table, names_[k], "eV", energies_[k]);
+}
+
+}  // namespace pbms::coupling
