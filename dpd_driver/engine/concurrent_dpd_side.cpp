@@ -3,7 +3,13 @@
 #include <algorithm>
 #include <limits>
 
+#include "pbms/coupling/held_nodes.hpp"
+
 namespace pbms::dpd {
+
+// The solver's records are what the link sums.
+static_assert(mpm::MpmSolver::kHeldStride == coupling::kHeldLanes);
+static_assert(mpm::sums::kHeldAxes == coupling::lanes::kHeldAxes);
 
 ConcurrentDpdSide::ConcurrentDpdSide(DpdEngine& engine, DpdGridStep& grid, int partner_type)
     : engine_(engine), grid_(grid), partner_type_(partner_type) {}
@@ -70,6 +76,28 @@ void ConcurrentDpdSide::move_partners(const std::vector<coupling::GhostPoint>& p
 
 std::vector<coupling::Vec3> ConcurrentDpdSide::partner_forces() const {
   return engine_.partner_forces();
+}
+
+void ConcurrentDpdSide::update_nodes() {
+  grid_.update_nodes();
+  held_.clear();
+}
+
+// Asked for only when some rigid group holds a node of the band.
+coupling::NodalRecords ConcurrentDpdSide::held_nodes() {
+  const auto nodes = grid_.nodal_sums().nodes;
+  held_.resize(static_cast<std::size_t>(nodes.count()) * coupling::kHeldLanes);
+  grid_.held_nodes(held_.data());
+  own_held_ = held_;
+  return {held_.data(), coupling::kHeldLanes, nodes};
+}
+
+void ConcurrentDpdSide::map_back() {
+  if (!held_.empty()) {
+    coupling::keep_other_sides_holds(held_, own_held_);
+    grid_.hold_nodes_of_others(held_.data());
+  }
+  grid_.map_back();
 }
 
 }  // namespace pbms::dpd

@@ -18,7 +18,9 @@ class ConcurrentDpdSide : public coupling::ParticleSide {
   void compute_forces() override { grid_.compute_forces(); }
   void map_to_grid() override { grid_.map_to_grid(); }
   [[nodiscard]] coupling::NodalRecords nodal_records() override;
-  void update_and_map_back() override { grid_.update_and_map_back(); }
+  void update_nodes() override;
+  [[nodiscard]] coupling::NodalRecords held_nodes() override;
+  void map_back() override;
   void finish_step() override { grid_.finish_step(); }
   [[nodiscard]] MPI_Comm comm() const override { return engine_.comm(); }
   [[nodiscard]] bool wants_new_partners() override { return grid_.list_needs_rebuild(); }
@@ -37,6 +39,7 @@ class ConcurrentDpdSide : public coupling::ParticleSide {
   int partner_type_;
   std::vector<Vec3> x_, v_;
   std::vector<std::int64_t> id_;
+  std::vector<double> held_, own_held_;  // held_nodes records: summed, and this side's
 };
 
 }  // namespace pbms::dpd

@@ -234,7 +234,8 @@ void DpdGridStep::balance_free_bodies() {
 void DpdGridStep::step() {
   compute_forces();
   map_to_grid();
-  update_and_map_back();
+  update_nodes();
+  map_back();
   finish_step();
 }
 
@@ -274,13 +275,16 @@ void DpdGridStep::map_to_grid() {
   solver_->begin_step(points_);
   solver_->map_to_grid(points_, bc_, dt);
   solver_->complete_nodal_sums();
+  solver_->mark_held_nodes(bc_);
 }
 
-void DpdGridStep::update_and_map_back() {
-  const double dt = engine_.settings().dt;
-  solver_->update_nodes(bc_, dt);
+void DpdGridStep::update_nodes() {
+  solver_->update_nodes(bc_, engine_.settings().dt);
   balance_free_bodies();
-  solver_->map_to_points(points_, bc_, dt);
+}
+
+void DpdGridStep::map_back() {
+  solver_->map_to_points(points_, bc_, engine_.settings().dt);
   solver_->complete_remap_sums();
 }
 

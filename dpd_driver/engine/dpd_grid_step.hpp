@@ -85,11 +85,12 @@ class DpdGridStep {
 
   // The phases of step(), for a coupling scheme that adds another
   // program's nodal sums between them.
-  void compute_forces();       // pair forces, free bodies pushed
-  void map_to_grid();          // mass, momentum, pair forces to the nodes (s-1, s-2, s-3b)
-  void update_and_map_back();  // nodal update, grid to particles, remap (s-4 to s-10)
-  void finish_step();          // move with the grid velocity (s-11), step counted, ghosts
-                               // follow
+  void compute_forces();  // pair forces, free bodies pushed
+  void map_to_grid();     // mass, momentum, pair forces to the nodes (s-1, s-2, s-3b)
+  void update_nodes();    // nodal update, rigid groups held, free bodies balanced (s-4 to s-6)
+  void map_back();        // grid to particles, remap (s-7 to s-10)
+  void finish_step();     // move with the grid velocity (s-11), step counted, ghosts
+                          // follow
 
   // The velocity a rigid (not free) group of settings.rigid moves at from
   // the next step on (a grip on a velocity ramp).
@@ -107,8 +108,15 @@ class DpdGridStep {
   [[nodiscard]] bool list_needs_rebuild();
 
   // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
-  // update_and_map_back, and the remapped momentum after the latter.
+  // update_nodes, and the remapped momentum after map_back.
   [[nodiscard]] mpm::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
+
+  // Between update_nodes and map_back: the nodes the rigid groups hold
+  // (MpmSolver::held_nodes), and holding those another program holds.
+  void held_nodes(double* records) const { solver_->held_nodes(bc_, records); }
+  void hold_nodes_of_others(const double* records) {
+    solver_->hold_nodes_of_others(records, engine_.settings().dt);
+  }
 
   [[nodiscard]] const grid::RegularGrid& grid() const { return solver_->grid(); }
   // The split of the grid over the engine's ranks, which is also the

@@ -1,9 +1,15 @@
 #include "engine/concurrent_mpm_side.hpp"
 
+#include "pbms/coupling/held_nodes.hpp"
+
 #include <cmath>
 #include <limits>
 
 namespace pbms::mpm {
+
+// The solver's records are what the link sums.
+static_assert(mpm::MpmSolver::kHeldStride == coupling::kHeldLanes);
+static_assert(mpm::sums::kHeldAxes == coupling::lanes::kHeldAxes);
 
 ConcurrentMpmSide::ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin)
     : engine_(engine), dt_(dt), skin_(partner_skin) {}
@@ -55,6 +61,7 @@ void ConcurrentMpmSide::map_to_grid() {
   engine_.begin_step();
   engine_.map_to_grid(dt_);
   engine_.complete_nodal_sums();
+  engine_.solver().mark_held_nodes(engine_.boundary_conditions());
 }
 
 coupling::NodalRecords ConcurrentMpmSide::nodal_records() {
@@ -62,8 +69,25 @@ coupling::NodalRecords ConcurrentMpmSide::nodal_records() {
   return {s.data, s.stride, s.nodes};
 }
 
-void ConcurrentMpmSide::update_and_map_back() {
+void ConcurrentMpmSide::update_nodes() {
   engine_.update_nodes(dt_);
+  held_.clear();
+}
+
+// Asked for only when some rigid group holds a node of the band.
+coupling::NodalRecords ConcurrentMpmSide::held_nodes() {
+  const auto nodes = engine_.solver().nodal_sums().nodes;
+  held_.resize(static_cast<std::size_t>(nodes.count()) * coupling::kHeldLanes);
+  engine_.solver().held_nodes(engine_.boundary_conditions(), held_.data());
+  own_held_ = held_;
+  return {held_.data(), coupling::kHeldLanes, nodes};
+}
+
+void ConcurrentMpmSide::map_back() {
+  if (!held_.empty()) {
+    coupling::keep_other_sides_holds(held_, own_held_);
+    engine_.solver().hold_nodes_of_others(held_.data(), dt_);
+  }
   engine_.map_to_points(dt_);
   engine_.complete_remap_sums();
 }

@@ -19,7 +19,9 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   void compute_forces() override {}
   void map_to_grid() override;
   [[nodiscard]] coupling::NodalRecords nodal_records() override;
-  void update_and_map_back() override;
+  void update_nodes() override;
+  [[nodiscard]] coupling::NodalRecords held_nodes() override;
+  void map_back() override;
   void finish_step() override;
 
   [[nodiscard]] MPI_Comm comm() const override { return engine_.comm(); }
@@ -38,6 +40,7 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   double dt_;
   double skin_;
   std::vector<Vec3> reactions_;
+  std::vector<double> held_, own_held_;   // held_nodes records: summed, and this side's
   std::vector<std::int64_t> ids_;         // the points as last followed
   std::vector<Vec3> last_x_, unwrapped_;  // wrapped as stored; continuous
   std::vector<Vec3> chosen_at_;           // unwrapped_ when partners were chosen

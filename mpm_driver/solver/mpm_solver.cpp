@@ -784,6 +784,7 @@ void MpmSolver::step(MaterialPoints& points, const BoundaryConditions& bc, doubl
 
 void MpmSolver::begin_step(const MaterialPoints& points) {
   enter(Phase::kBegin);
+  others_held_.clear();
   double ref = opt_.reference_point_mass;
   if (ref <= 0.0 && points.size() > 0)
     ref = *std::min_element(points.mass.begin(), points.mass.end());
@@ -921,6 +922,47 @@ void MpmSolver::shift_held_nodes(const BoundaryConditions& bc, size_t c, const V
   add_scaled(reaction_[c], moved / (dt * kf), held_dv);
 }
 
+int MpmSolver::held_axes(const BoundaryConditions& bc, size_t i) const {
+  int axes = 0;
+  for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
+    if (rigid_[c][i] <= 0.0) continue;
+    for (size_t a = 0; a < 3; ++a) {
+      if (bc.point_velocities[c].axis[a]) axes |= 1 << a;
+    }
+  }
+  return axes;
+}
+
+void MpmSolver::held_nodes(const BoundaryConditions& bc, double* records) const {
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    double* r = records + i * kHeldStride;
+    const int axes = held_axes(bc, i);
+    r[0] = axes;
+    for (size_t a = 0; a < 3; ++a) r[1 + a] = (axes & (1 << a)) != 0 ? velocity_[i][a] : 0.0;
+  }
+}
+
+void MpmSolver::mark_held_nodes(const BoundaryConditions& bc) {
+  if (bc.point_velocities.empty()) return;
+  for (size_t i = 0; i < sums_.size(); ++i) sums_[i].lanes[sums::kHeldAxes] = held_axes(bc, i);
+}
+
+void MpmSolver::hold_nodes_of_others(const double* records, double dt) {
+  others_held_.clear();
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    const double* r = records + i * kHeldStride;
+    const auto axes = static_cast<int>(std::lround(r[0]));
+    if (axes == 0) continue;
+    const bool moving = sums_[i].lanes[sums::kMass] > mass_floor_;
+    for (size_t a = 0; a < 3; ++a) {
+      if ((axes & (1 << a)) == 0) continue;
+      if (moving) acceleration_[i][a] += (r[1 + a] - velocity_[i][a]) / dt;
+      velocity_[i][a] = r[1 + a];
+      others_held_.push_back({i, a, r[1 + a]});
+    }
+  }
+}
+
 // Grid to points (s-7), and under update-stress-last the remap of the new
 // point momenta with this step's shape functions (s-10) in the same pass.
 void MpmSolver::map_to_points(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
@@ -986,6 +1028,7 @@ void MpmSolver::update_stress_and_move(MaterialPoints& points, const BoundaryCon
   if (opt_.stress_update != StressUpdate::kLast) return;
   nodal_velocities(bc, remap_velocity_);  // s-11
   impose_rigid(bc, remap_velocity_);
+  for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;
   if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
   pack_kinematics(remap_velocity_, velocity_);
   with_eval([&](const auto& eval) { stress_and_move(eval, points, bc, dt); });

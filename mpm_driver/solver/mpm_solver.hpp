@@ -143,6 +143,25 @@ class MpmSolver {
   [[nodiscard]] const Vec3& held_share_momentum(size_t c) const { return share_momentum_[c]; }
   void shift_held_nodes(const BoundaryConditions& bc, size_t c, const Vec3& dv, double dt);
 
+  // Holds across programs (a concurrent run, whose two programs map to the
+  // nodes they share): each must hold the nodes the other's rigid groups
+  // hold, or its material there moves freely while the other's is held.
+  // Between update_nodes and map_to_points, `records` gets, per node of
+  // patch().nodes, kHeldStride doubles: the axes this solver holds there,
+  // as a sum of 1 (x), 2 (y) and 4 (z), then the held velocity on those
+  // axes (0 on the others), after any shift_held_nodes.
+  static constexpr int kHeldStride = 4;
+  void held_nodes(const BoundaryConditions& bc, double* records) const;
+  // After complete_nodal_sums: lane sums::kHeldAxes of each node's sums
+  // gets the axes held there (as in held_nodes), so that a sum across
+  // programs tells both whether either holds a node they share.
+  void mark_held_nodes(const BoundaryConditions& bc);
+  // Holds the nodes another program holds (records as held_nodes writes
+  // them) at its velocities: now, and on the remapped velocities of s-11,
+  // as this solver's own groups are held. Their force is the other
+  // program's reaction, not added to this solver's.
+  void hold_nodes_of_others(const double* records, double dt);
+
   [[nodiscard]] const grid::RegularGrid& grid() const { return patch_.domain; }
   [[nodiscard]] const GridPatch& patch() const { return patch_; }
   [[nodiscard]] const Material& material(int i) const {
@@ -179,6 +198,9 @@ class MpmSolver {
   void stress_and_move(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
                        double dt);
   void hold_rigid_nodes(const BoundaryConditions& bc, double dt);
+  // The axes bc's prescribed-velocity entries hold at node i, as a sum of
+  // 1 (x), 2 (y) and 4 (z).
+  [[nodiscard]] int held_axes(const BoundaryConditions& bc, size_t i) const;
   // Throws, naming the point, if it is outside this solver's box.
   void evaluate(const MaterialPoints& points, size_t p, grid::ShapeStencil& s) const;
   [[nodiscard]] bool inside(const Vec3& x) const;
@@ -252,6 +274,14 @@ class MpmSolver {
   // Per node: two vector fields a point pass interpolates together.
   std::vector<NodeLanes> kin_;
   std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
+  // Nodes another program holds this step (hold_nodes_of_others): local
+  // index, axis and velocity.
+  struct OtherHold {
+    size_t node;
+    size_t axis;
+    double velocity;
+  };
+  std::vector<OtherHold> others_held_;
   std::vector<Vec3> reaction_;
   std::vector<std::vector<double>>
       rigid_;  // per point_velocities entry: its points' share of each node's mass

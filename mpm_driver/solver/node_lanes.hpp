@@ -20,6 +20,7 @@ namespace sums {
 inline constexpr int kMass = 0;
 inline constexpr int kMomentum = 1;  // 1, 2, 3
 inline constexpr int kForce = 4;     // 4, 5, 6
+inline constexpr int kHeldAxes = 7;  // MpmSolver::mark_held_nodes
 inline constexpr int kStride = 8;    // doubles from one node's sums to the next
 }  // namespace sums
 

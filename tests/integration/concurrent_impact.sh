@@ -26,27 +26,28 @@ dpd_near, dpd_far = value("all_dpd", "wave_speed_near_half"), value("all_dpd", "
 mpm_near, mpm_far = value("all_mpm", "wave_speed_near_half"), value("all_mpm", "wave_speed_far_half")
 check(math.isfinite(mc_far), f"momentum-conserving interface: the wave crosses into the MPM half")
 check(abs(rel(mc_near, dpd_near)) < 10, f"DPD half {mc_near:.0f} m/s vs all-DPD {dpd_near:.0f} m/s ({rel(mc_near, dpd_near):+.1f} %, within 10 %)")
-# The MPM half is held to 15 %, not the issue's 10 %: since the flyer pays
-# for the material it sweeps along (2026-12-04) the pulse is a short one,
-# and seeds 1-3 and 2026 put the MPM half at -7.2 to -11.1 % (first
-# motion) and -5.3 to -12.7 % (mid-amplitude) of all-MPM (docs/concurrent.md).
-check(abs(rel(mc_far, mpm_far)) < 15, f"MPM half {mc_far:.0f} m/s vs all-MPM {mpm_far:.0f} m/s ({rel(mc_far, mpm_far):+.1f} %, within 15 %; the issue asks 10)")
+# Seeds 1-3 and 2026 put the MPM half at -6.8 to -8.9 % (first motion) and
+# -5.7 to -8.1 % (mid-amplitude) of all-MPM, since mpm_driver holds the
+# nodes the DPD flyer holds in the all-MPM run (docs/concurrent.md).
+check(abs(rel(mc_far, mpm_far)) < 10, f"MPM half {mc_far:.0f} m/s vs all-MPM {mpm_far:.0f} m/s ({rel(mc_far, mpm_far):+.1f} %, within 10 %)")
 print(f"info all-DPD far half {dpd_far:.0f} m/s, all-MPM near half {mpm_near:.0f} m/s, untreated DPD half {un_near:.0f} m/s")
 # The same halves timed half way up each slab's velocity rise, the speed a
 # jump condition gives. Seeds 1-3 and 2026: DPD half +0.6 to +1.3 %.
 mc_fn, mc_ff = value("concurrent", "front_speed_near_half"), value("concurrent", "front_speed_far_half")
 dpd_fn, mpm_ff = value("all_dpd", "front_speed_near_half"), value("all_mpm", "front_speed_far_half")
 check(abs(rel(mc_fn, dpd_fn)) < 3, f"mid-amplitude: DPD half {mc_fn:.0f} m/s vs all-DPD {dpd_fn:.0f} m/s ({rel(mc_fn, dpd_fn):+.1f} %, within 3 %)")
-check(abs(rel(mc_ff, mpm_ff)) < 15, f"mid-amplitude: MPM half {mc_ff:.0f} m/s vs all-MPM {mpm_ff:.0f} m/s ({rel(mc_ff, mpm_ff):+.1f} %, within 15 %; the issue asks 10)")
+check(abs(rel(mc_ff, mpm_ff)) < 10, f"mid-amplitude: MPM half {mc_ff:.0f} m/s vs all-MPM {mpm_ff:.0f} m/s ({rel(mc_ff, mpm_ff):+.1f} %, within 10 %)")
 # The ledger: the flyer is a free rigid body, and with either conserving
 # interface (or none) the body's total momentum stays put to round-off, in
 # units of M c (2.9 times its start during the impact before the flyer's
 # nodes were balanced, 2026-12-04).
-for stage in ("concurrent", "concurrent_untreated", "all_dpd"):
+# All MPM, the DPD flyer strikes MPM points: mpm_driver holds the nodes the
+# flyer holds (held nodes summed across the programs; 7.5e-3 M c, the
+# flyer's whole momentum, before 2026-12-04, when it did not).
+for stage in ("concurrent", "concurrent_untreated", "all_dpd", "all_mpm"):
     dp = value(stage, "momentum_change")
     check(dp < 1e-12, f"{stage}: total momentum kept to {dp:.1e} of M c (1e-12)")
-print(f"info momentum change, seed's treatment {value('concurrent_seed', 'momentum_change'):.3f}, "
-      f"all-MPM (the flyer's nodes held on the DPD side only) {value('all_mpm', 'momentum_change'):.4f} of M c")
+print(f"info momentum change, seed's treatment {value('concurrent_seed', 'momentum_change'):.3f} of M c")
 un_open = value("concurrent_untreated", "max_interface_opening")
 un_end = value("concurrent_untreated", "interface_opening")
 mc_open = value("concurrent", "max_interface_opening")

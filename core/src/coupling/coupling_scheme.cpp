@@ -15,8 +15,10 @@ void CouplingScheme::step() {
   for (GridSide* s : sides_) s->compute_forces();
   if (treatment_ == InterfaceTreatment::kMomentumConserving) link_.return_reactions();
   for (GridSide* s : sides_) s->map_to_grid();
-  link_.sum_nodes(lanes::kMass, lanes::kMassMomentumForce);
-  for (GridSide* s : sides_) s->update_and_map_back();
+  link_.sum_nodes(lanes::kMass, lanes::kSummedAfterMapToGrid);
+  for (GridSide* s : sides_) s->update_nodes();
+  link_.sum_holds();
+  for (GridSide* s : sides_) s->map_back();
   link_.sum_nodes(lanes::kMomentum, lanes::kRemappedMomentum);
   for (GridSide* s : sides_) s->finish_step();
 }

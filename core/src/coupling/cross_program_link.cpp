@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "pbms/coupling/scalar_across_programs.hpp"
+#include "pbms/grid/for_each_node.hpp"
+#include "pbms/mpi/comm.hpp"
 
 namespace pbms::coupling {
 
@@ -13,6 +15,7 @@ CrossProgramLink::CrossProgramLink(MPI_Comm inter, ParticleSide& side,
     : side_(side),
       particles_(&side),
       sum_(inter, mine, theirs, band),
+      band_(band),
       ghosts_(std::make_unique<PointGhostsAcrossPrograms>(
           inter, PointGhostsAcrossPrograms::Side::kReceiver, side.partner_box(), reach,
           side.partner_images())),
@@ -25,6 +28,7 @@ CrossProgramLink::CrossProgramLink(MPI_Comm inter, ContinuumSide& side,
     : side_(side),
       continuum_(&side),
       sum_(inter, mine, theirs, band),
+      band_(band),
       ghosts_(std::make_unique<PointGhostsAcrossPrograms>(
           inter, PointGhostsAcrossPrograms::Side::kSender, side.points_box(), reach,
           PeriodicLengths{})),
@@ -69,6 +73,21 @@ void CrossProgramLink::return_reactions() {
 void CrossProgramLink::sum_nodes(int first, int count) {
   const NodalRecords r = side_.nodal_records();
   sum_.sum(r.data + first, count, r.stride);
+}
+
+void CrossProgramLink::sum_holds() {
+  const NodalRecords n = side_.nodal_records();
+  const auto stride = static_cast<std::size_t>(n.stride);
+  int held = 0;
+  grid::for_each_node(n.nodes.intersected(band_), [&](const std::array<int, 3>& ijk) {
+    const auto k = static_cast<std::size_t>(n.nodes.local_index(ijk));
+    if (n.data[k * stride + lanes::kHeldAxes] > 0.0) held = 1;
+  });
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, &held, 1, MPI_INT, MPI_MAX, side_.comm()),
+             "MPI_Allreduce (held nodes in the band)");
+  if (held == 0) return;
+  const NodalRecords r = side_.held_nodes();
+  sum_.sum(r.data, r.stride, r.stride);
 }
 
 }  // namespace pbms::coupling

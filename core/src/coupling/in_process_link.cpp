@@ -62,8 +62,16 @@ void InProcessLink::return_reactions() {
 }
 
 void InProcessLink::sum_nodes(int first, int count) {
-  const NodalRecords a = particles_.nodal_records();
-  const NodalRecords b = continuum_.nodal_records();
+  sum_records(particles_.nodal_records(), continuum_.nodal_records(), first, count);
+}
+
+void InProcessLink::sum_holds() {
+  const NodalRecords a = particles_.held_nodes();
+  sum_records(a, continuum_.held_nodes(), 0, a.stride);
+}
+
+void InProcessLink::sum_records(const NodalRecords& a, const NodalRecords& b, int first,
+                                int count) {
   const auto stride_a = static_cast<std::size_t>(a.stride);
   const auto stride_b = static_cast<std::size_t>(b.stride);
   grid::for_each_node(a.nodes.intersected(b.nodes), [&](const std::array<int, 3>& ijk) {

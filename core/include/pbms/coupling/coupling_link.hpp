@@ -17,6 +17,9 @@ class CouplingLink {
   // Lanes [first, first + count) of both sides' nodal records become their
   // sum on the nodes both hold.
   virtual void sum_nodes(int first, int count) = 0;
+  // Both sides' held_nodes records become their sum on the nodes both hold,
+  // so that each holds what the other holds.
+  virtual void sum_holds() = 0;
 };
 
 }  // namespace pbms::coupling

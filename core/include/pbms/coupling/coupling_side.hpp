@@ -30,19 +30,23 @@ enum class InterfaceTreatment {
 
 // A side's nodal records between its phases: per node of `nodes` (global
 // indices, i fastest), `stride` doubles: lane 0 mass, 1–3 momentum, 4–6
-// force (after map_to_grid), lanes 1–3 the remapped momentum (after
-// update_and_map_back).
+// force, 7 the axes its rigid groups hold there as a sum of 1 (x), 2 (y)
+// and 4 (z) (after map_to_grid), lanes 1–3 the remapped momentum (after
+// map_back).
 struct NodalRecords {
   double* data = nullptr;
   int stride = 0;
   grid::NodeBox nodes;
 };
 
+inline constexpr int kHeldLanes = 4;
+
 namespace lanes {
 constexpr int kMass = 0;
 constexpr int kMomentum = 1;
-constexpr int kMassMomentumForce = 7;  // lanes summed after map_to_grid
-constexpr int kRemappedMomentum = 3;   // lanes summed after update_and_map_back
+constexpr int kHeldAxes = 7;              // the axes this side's rigid groups hold at the node
+constexpr int kSummedAfterMapToGrid = 8;  // mass, momentum, force and held axes
+constexpr int kRemappedMomentum = 3;      // lanes summed after map_back
 }  // namespace lanes
 
 class GridSide {
@@ -54,9 +58,19 @@ class GridSide {
   // side's own ranks (s-1 to s-3a/b).
   virtual void map_to_grid() = 0;
   [[nodiscard]] virtual NodalRecords nodal_records() = 0;
-  // Nodal update, grid to points, remapped momentum summed over this
-  // side's ranks (s-4 to s-10).
-  virtual void update_and_map_back() = 0;
+  // Nodal update with this side's conditions and rigid groups (s-4 to
+  // s-6; a free rigid body's balance).
+  virtual void update_nodes() = 0;
+  // After update_nodes, when the link asks (some rigid group holds a node
+  // of the band): what this side holds, per node of nodal_records()'
+  // nodes, kHeldLanes doubles (the held axes as a sum of 1 (x), 2 (y) and
+  // 4 (z), then the velocity on them), to which the link adds the other
+  // side's.
+  [[nodiscard]] virtual NodalRecords held_nodes() = 0;
+  // Holds the nodes the other side holds (when held_nodes was asked for),
+  // then grid to points and the remapped momentum summed over this side's
+  // ranks (s-7 to s-10).
+  virtual void map_back() = 0;
   // Nodal velocities, stresses, moves (s-11 to s-14); the step is done.
   virtual void finish_step() = 0;
   // The ranks of this side's program.

@@ -34,6 +34,10 @@ class CrossProgramLink : public CouplingLink {
   void share_partners() override;
   void return_reactions() override;
   void sum_nodes(int first, int count) override;
+  // Only when a rigid group of either program holds a node of the band
+  // (its held axes, summed with the nodal sums, say so alike in both
+  // programs): otherwise nothing either holds reaches the other.
+  void sum_holds() override;
 
   [[nodiscard]] const ExchangeProfile& nodal_profile() const { return sum_.profile(); }
   [[nodiscard]] const ExchangeProfile& partner_profile() const { return ghosts_->profile(); }
@@ -43,6 +47,7 @@ class CrossProgramLink : public CouplingLink {
   ParticleSide* particles_ = nullptr;
   ContinuumSide* continuum_ = nullptr;
   NodalSumAcrossPrograms sum_;
+  grid::NodeBox band_;
   std::unique_ptr<PointGhostsAcrossPrograms> ghosts_;
   MPI_Comm inter_;
   bool chosen_ = false;  // partners chosen at least once

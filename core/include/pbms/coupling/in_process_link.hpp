@@ -21,8 +21,10 @@ class InProcessLink : public CouplingLink {
   void share_partners() override;
   void return_reactions() override;
   void sum_nodes(int first, int count) override;
+  void sum_holds() override;
 
  private:
+  static void sum_records(const NodalRecords& a, const NodalRecords& b, int first, int count);
   ParticleSide& particles_;
   ContinuumSide& continuum_;
   std::vector<GhostPoint> partners_;
