@@ -269,6 +269,8 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  // The stepping's exchanges, without the closing pass's.
+  const coupling::ExchangeProfile nodal = link.nodal_profile(), partners = link.partner_profile();
   scheme.close();
   ledger.energies(engine);
 
@@ -290,13 +292,12 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   probes.report(r, "dpd");
   ledger.table().report(r, "dpd");
-  coupling::report_exchanges(r, ctx.comm(), "dpd", link.nodal_profile(), link.partner_profile(),
-                             cp.steps, seconds);
+  coupling::report_exchanges(r, ctx.comm(), "dpd", nodal, partners, cp.steps, seconds);
   if (tension) tension->report(r);
   // Bytes the DPD part's ranks sent in the nodal sums and received as
   // partners, per step, summed over its ranks.
-  double bytes[2] = {static_cast<double>(link.nodal_profile().bytes_sent),
-                     static_cast<double>(link.partner_profile().bytes_received)};
+  double bytes[2] = {static_cast<double>(nodal.bytes_sent),
+                     static_cast<double>(partners.bytes_received)};
   MPI_Allreduce(MPI_IN_PLACE, bytes, 2, MPI_DOUBLE, MPI_SUM, ctx.comm());
   const double steps = std::max<double>(1.0, static_cast<double>(cp.steps));
   r.add_scalar("nodal_sum_bytes_per_step", bytes[0] / steps, "1");

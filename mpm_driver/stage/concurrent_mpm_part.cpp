@@ -158,6 +158,8 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  // The stepping's exchanges, without the closing pass's.
+  const coupling::ExchangeProfile nodal = link.nodal_profile(), partners = link.partner_profile();
   scheme.close();
   (void)ledger.momentum_drift(inter);  // dpd_driver reports it
   auto& r = ctx.results();
@@ -168,8 +170,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   }
   probes.report(r, "mpm");
   ledger.report(r, "mpm");
-  coupling::report_exchanges(r, ctx.comm(), "mpm", link.nodal_profile(), link.partner_profile(),
-                             cp.steps, seconds);
+  coupling::report_exchanges(r, ctx.comm(), "mpm", nodal, partners, cp.steps, seconds);
 }
 
 }  // namespace pbms::mpm

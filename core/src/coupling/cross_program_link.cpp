@@ -16,6 +16,8 @@ CrossProgramLink::CrossProgramLink(MPI_Comm inter, ParticleSide& side,
       particles_(&side),
       sum_(inter, mine, theirs, band),
       band_(band),
+      periodic_(mine.periodic()),
+      cells_(mine.grid().cells()),
       ghosts_(std::make_unique<PointGhostsAcrossPrograms>(
           inter, PointGhostsAcrossPrograms::Side::kReceiver, side.partner_box(), reach,
           side.partner_images())),
@@ -29,6 +31,8 @@ CrossProgramLink::CrossProgramLink(MPI_Comm inter, ContinuumSide& side,
       continuum_(&side),
       sum_(inter, mine, theirs, band),
       band_(band),
+      periodic_(mine.periodic()),
+      cells_(mine.grid().cells()),
       ghosts_(std::make_unique<PointGhostsAcrossPrograms>(
           inter, PointGhostsAcrossPrograms::Side::kSender, side.points_box(), reach,
           PeriodicLengths{})),
@@ -80,6 +84,9 @@ void CrossProgramLink::sum_holds() {
   const auto stride = static_cast<std::size_t>(n.stride);
   int held = 0;
   grid::for_each_node(n.nodes.intersected(band_), [&](const std::array<int, 3>& ijk) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (periodic_[a] && ijk[a] >= cells_[a]) return;
+    }
     const auto k = static_cast<std::size_t>(n.nodes.local_index(ijk));
     if (n.data[k * stride + lanes::kHeldAxes] > 0.0) held = 1;
   });

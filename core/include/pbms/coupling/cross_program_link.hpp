@@ -8,6 +8,7 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <memory>
 
 #include "pbms/coupling/coupling_link.hpp"
@@ -48,6 +49,11 @@ class CrossProgramLink : public CouplingLink {
   ContinuumSide* continuum_ = nullptr;
   NodalSumAcrossPrograms sum_;
   grid::NodeBox band_;
+  // On periodic axes the node at index `cells` is node 0's image, summed
+  // as node 0 (only when node 0 is in the band too), so it is left out of
+  // the decision to swap the held nodes, which both programs must share.
+  std::array<bool, 3> periodic_{};
+  std::array<int, 3> cells_{};
   std::unique_ptr<PointGhostsAcrossPrograms> ghosts_;
   MPI_Comm inter_;
   bool chosen_ = false;  // partners chosen at least once
