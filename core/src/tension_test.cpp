@@ -72,12 +72,40 @@ TensionTest TensionTest::from_yaml(const YAML::Node& t) {
   return s;
 }
 
-void TensionTest::report(StageResults& r, const std::vector<double>& strain,
-                         const std::vector<double>& stress, const std::string& stage) const {
+double TensionTest::fit_end(const std::vector<double>& strain,
+                            const std::vector<double>& stress) const {
   // The elastic part ends at the stress maximum unless the config bounds it.
   const auto peak =
       static_cast<std::size_t>(std::max_element(stress.begin(), stress.end()) - stress.begin());
-  const double end = fit_strain ? *fit_strain : (strain.empty() ? 0.0 : strain[peak]);
+  return fit_strain ? *fit_strain : (strain.empty() ? 0.0 : strain[peak]);
+}
+
+void TensionTest::report_grips(StageResults& r, const std::vector<double>& strain,
+                               const std::vector<double>& stress,
+                               const std::vector<double>& grip_stress,
+                               const std::string& stage) const {
+  const double end = fit_end(strain, stress);
+  std::vector<double> fx, fy;
+  for (std::size_t k = 0; k < strain.size() && k < grip_stress.size(); ++k) {
+    if (strain[k] <= end) {
+      fx.push_back(strain[k]);
+      fy.push_back(grip_stress[k]);
+    }
+  }
+  if (fx.size() < 3) {
+    throw Error(
+        fmt::format("stage '{}': fewer than 3 grip samples up to a strain of {:.4g}", stage, end));
+  }
+  const auto fit = fit_line(fx, fy);
+  r.add_scalar("grip_youngs_modulus", fit.slope, "GPa", fit.slope_error);
+  r.add_column("tension_curve", "grip_stress", "GPa", grip_stress);
+}
+
+void TensionTest::report(StageResults& r, const std::vector<double>& strain,
+                         const std::vector<double>& stress, const std::string& stage) const {
+  const auto peak =
+      static_cast<std::size_t>(std::max_element(stress.begin(), stress.end()) - stress.begin());
+  const double end = fit_end(strain, stress);
   std::vector<double> fx, fy;
   for (std::size_t k = 0; k < strain.size(); ++k) {
     if (strain[k] <= end) {

@@ -23,7 +23,10 @@ DpdProbes::DpdProbes(const YAML::Node& probes, const DpdModel& model) {
     const auto kind = p["kind"].as<std::string>();
     Probe probe{};
     auto add = [&](const std::string& suffix, const std::string& unit) {
-      columns_.push_back(name + "." + suffix);
+      std::string column = name;
+      column += '.';
+      column += suffix;
+      columns_.push_back(std::move(column));
       units_.push_back(unit);
     };
     if (kind == "temperature") {
@@ -77,6 +80,17 @@ Vec3 DpdProbes::centre_of_mass(const DpdEngine& engine, std::uint32_t mask) {
   return {s[0] / s[3], s[1] / s[3], s[2] / s[3]};
 }
 
+Vec3 DpdProbes::group_force(const DpdEngine& engine, std::uint32_t mask) {
+  const DpdParticles& p = engine.particles();
+  double f[3] = {0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < engine.owned(); ++i) {
+    if ((p.group_mask[i] & mask) == 0) continue;
+    for (int a = 0; a < 3; ++a) f[a] += p.f[i][a];
+  }
+  sum_all(engine.comm(), f, 3);
+  return {f[0], f[1], f[2]};
+}
+
 double DpdProbes::extent(const DpdEngine& engine, std::uint32_t mask, int axis) {
   const DpdParticles& p = engine.particles();
   const OrthogonalBox& box = engine.domain().box();
@@ -121,12 +135,7 @@ std::vector<double> DpdProbes::sample(DpdEngine& engine, ThermoState& thermo) {
         break;
       }
       case Kind::kForce: {
-        double f[3] = {0.0, 0.0, 0.0};
-        for (std::size_t i = 0; i < engine.owned(); ++i) {
-          if ((p.group_mask[i] & probe.mask) == 0) continue;
-          for (int a = 0; a < 3; ++a) f[a] += p.f[i][a];
-        }
-        sum_all(engine.comm(), f, 3);
+        const Vec3 f = group_force(engine, probe.mask);
         out.insert(out.end(), {f[0], f[1], f[2]});
         break;
       }

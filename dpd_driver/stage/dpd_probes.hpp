@@ -29,6 +29,8 @@ class DpdProbes {
   [[nodiscard]] static Vec3 centre_of_mass(const DpdEngine& engine, std::uint32_t mask);
   // Largest minus smallest coordinate of a group along an axis.
   [[nodiscard]] static double extent(const DpdEngine& engine, std::uint32_t mask, int axis);
+  // The pair force on a group's particles, eV/Å, over all ranks (collective).
+  [[nodiscard]] static Vec3 group_force(const DpdEngine& engine, std::uint32_t mask);
 
  private:
   enum class Kind { kTemperature, kPressure, kEnergy, kMomentum, kSlab, kForce, kExtent };

@@ -167,12 +167,17 @@ void run_stage(StageContext& ctx, Mode mode) {
   std::uint32_t specimen_mask = 0;
   int tension_axis = 0;
   double area = 0.0, length0 = 0.0;
-  std::vector<double> strain, stress;
+  std::vector<double> strain, stress, grip_stress;
+  std::uint32_t left_grip = 0, right_grip = 0;
   if (mode == Mode::kTension) {
     if (!p["tension"]) {
       throw Error(fmt::format("stage '{}': mode tension needs `tension`", ctx.stage()));
     }
     specimen_mask = model.group_mask(p["tension"]["specimen"].as<std::string>());
+    if (const YAML::Node grips = p["tension"]["grips"]) {
+      left_grip = model.group_mask(grips["left"].as<std::string>());
+      right_grip = model.group_mask(grips["right"].as<std::string>());
+    }
     tension_axis = axis_of(p["tension"]["axis"]);
     // An fcc crystal of n cells spans n a; its outermost sites, n a − a/2.
     const double plane = 0.5 * lattice_constant;
@@ -251,6 +256,12 @@ void run_stage(StageContext& ctx, Mode mode) {
       stress.push_back(-thermo.virial[static_cast<std::size_t>(tension_axis)] / (area * length) *
                        units::kBarPerEvPerA3 / units::kBarPerGPa);
       if (gauge) gauge->sample(engine);
+      if (left_grip != 0) {
+        const auto a = static_cast<std::size_t>(tension_axis);
+        const double pull = 0.5 * (DpdProbes::group_force(engine, left_grip)[a] -
+                                   DpdProbes::group_force(engine, right_grip)[a]);
+        grip_stress.push_back(pull / area * units::kBarPerEvPerA3 / units::kBarPerGPa);
+      }
     }
   };
   auto track_slabs = [&](std::int64_t step) {
@@ -346,6 +357,7 @@ void run_stage(StageContext& ctx, Mode mode) {
   }
   if (mode == Mode::kTension) {
     tension_test.report(r, strain, stress, ctx.stage());
+    if (left_grip != 0) tension_test.report_grips(r, strain, stress, grip_stress, ctx.stage());
     if (gauge) gauge->report(tension_test, r, ctx.stage());
     r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area);
   }

@@ -229,13 +229,23 @@ config::StageKindSpec DpdRunStage::spec() {
       Param::identifier("specimen", "The rod: a body or group, grips included").require(),
       Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
       Param::real("area", Dimension::kNone, "Cross-section, Å^2 (default: from the extents)")
-          .above(0)};
+          .above(0),
+      Param::map("grips",
+                 {Param::identifier("left", "The grip group at the low end").require(),
+                  Param::identifier("right", "The grip group at the high end").require()},
+                 "The grip groups, whose pull over the initial cross-section gives "
+                 "grip_youngs_modulus")};
   for (auto& q : analysis::TensionTest::params()) tension.push_back(std::move(q));
   s.params.push_back(Param::map(
       "tension", std::move(tension),
       "mode: tension. Stress is the specimen's mean conservative virial stress, strain its "
       "elongation over its length"));
   s.outputs = common_outputs();
+  s.outputs.push_back({"grip_youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
+                       "Slope of the grips' stress (the rod's pull on them: the pair force on the "
+                       "left grip less that on the right, halved, over the initial "
+                       "cross-section) against the strain, over youngs_modulus's window "
+                       "(tension, with grips)"});
   s.outputs.push_back({"wave_speed", OutputSpec::Shape::kScalar, "m/s",
                        "Distance between the slabs over the difference of their arrival times, "
                        "by impact.arrival (impact)"});

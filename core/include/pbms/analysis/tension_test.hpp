@@ -35,6 +35,14 @@ struct TensionTest {
   // Throws pbms::Error naming the stage with fewer than 3 samples to fit.
   void report(StageResults& r, const std::vector<double>& strain, const std::vector<double>& stress,
               const std::string& stage) const;
+  // The grips' measure beside the mean stress: grip_youngs_modulus, the
+  // slope of the grips' stress (their holding force over the initial
+  // cross-section, GPa) against the same strain over the same window as
+  // youngs_modulus, and the tension_curve's grip_stress column. After
+  // report, with its strain and stress. Throws as report.
+  void report_grips(StageResults& r, const std::vector<double>& strain,
+                    const std::vector<double>& stress, const std::vector<double>& grip_stress,
+                    const std::string& stage) const;
   // The gauge's outputs (gauge_*) from its strain (1) and Cauchy stress
   // (GPa) samples. The modulus is fitted up to the gauge's
   // fit_stress_fraction of its largest smoothed stress. The yield point is
@@ -44,6 +52,11 @@ struct TensionTest {
   // as report.
   void report_gauge(StageResults& r, const std::vector<double>& strain,
                     const std::vector<double>& stress, const std::string& stage) const;
+
+ private:
+  // The fit's upper strain: fit_strain, or the strain at the stress maximum.
+  [[nodiscard]] double fit_end(const std::vector<double>& strain,
+                               const std::vector<double>& stress) const;
 };
 
 }  // namespace pbms::analysis
