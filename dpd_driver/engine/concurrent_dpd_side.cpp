@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "pbms/coupling/held_nodes.hpp"
-
 namespace pbms::dpd {
 
 // The solver's records are what the link sums.
@@ -80,23 +78,16 @@ std::vector<coupling::Vec3> ConcurrentDpdSide::partner_forces() const {
 
 void ConcurrentDpdSide::update_nodes() {
   grid_.update_nodes();
-  held_.clear();
+  holds_.reset();
 }
 
 // Asked for only when some rigid group holds a node of the band.
 coupling::NodalRecords ConcurrentDpdSide::held_nodes() {
-  const auto nodes = grid_.nodal_sums().nodes;
-  held_.resize(static_cast<std::size_t>(nodes.count()) * coupling::kHeldLanes);
-  grid_.held_nodes(held_.data());
-  own_held_ = held_;
-  return {held_.data(), coupling::kHeldLanes, nodes};
+  return holds_.offer(grid_.nodal_sums().nodes, [this](double* r) { grid_.held_nodes(r); });
 }
 
 void ConcurrentDpdSide::map_back() {
-  if (!held_.empty()) {
-    coupling::keep_other_sides_holds(held_, own_held_);
-    grid_.hold_nodes_of_others(held_.data());
-  }
+  if (const double* others = holds_.others()) grid_.hold_nodes_of_others(others);
   grid_.map_back();
 }
 

@@ -6,6 +6,7 @@
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "pbms/coupling/coupling_side.hpp"
+#include "pbms/coupling/held_nodes.hpp"
 
 namespace pbms::dpd {
 
@@ -39,7 +40,7 @@ class ConcurrentDpdSide : public coupling::ParticleSide {
   int partner_type_;
   std::vector<Vec3> x_, v_;
   std::vector<std::int64_t> id_;
-  std::vector<double> held_, own_held_;  // held_nodes records: summed, and this side's
+  coupling::HeldNodeSwap holds_;
 };
 
 }  // namespace pbms::dpd

@@ -1,7 +1,5 @@
 #include "engine/concurrent_mpm_side.hpp"
 
-#include "pbms/coupling/held_nodes.hpp"
-
 #include <cmath>
 #include <limits>
 
@@ -71,23 +69,18 @@ coupling::NodalRecords ConcurrentMpmSide::nodal_records() {
 
 void ConcurrentMpmSide::update_nodes() {
   engine_.update_nodes(dt_);
-  held_.clear();
+  holds_.reset();
 }
 
 // Asked for only when some rigid group holds a node of the band.
 coupling::NodalRecords ConcurrentMpmSide::held_nodes() {
-  const auto nodes = engine_.solver().nodal_sums().nodes;
-  held_.resize(static_cast<std::size_t>(nodes.count()) * coupling::kHeldLanes);
-  engine_.solver().held_nodes(engine_.boundary_conditions(), held_.data());
-  own_held_ = held_;
-  return {held_.data(), coupling::kHeldLanes, nodes};
+  return holds_.offer(engine_.solver().nodal_sums().nodes, [this](double* r) {
+    engine_.solver().held_nodes(engine_.boundary_conditions(), r);
+  });
 }
 
 void ConcurrentMpmSide::map_back() {
-  if (!held_.empty()) {
-    coupling::keep_other_sides_holds(held_, own_held_);
-    engine_.solver().hold_nodes_of_others(held_.data(), dt_);
-  }
+  if (const double* others = holds_.others()) engine_.solver().hold_nodes_of_others(others, dt_);
   engine_.map_to_points(dt_);
   engine_.complete_remap_sums();
 }

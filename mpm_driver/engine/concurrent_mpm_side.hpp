@@ -6,6 +6,7 @@
 
 #include "engine/mpm_engine.hpp"
 #include "pbms/coupling/coupling_side.hpp"
+#include "pbms/coupling/held_nodes.hpp"
 
 namespace pbms::mpm {
 
@@ -40,7 +41,7 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   double dt_;
   double skin_;
   std::vector<Vec3> reactions_;
-  std::vector<double> held_, own_held_;   // held_nodes records: summed, and this side's
+  coupling::HeldNodeSwap holds_;
   std::vector<std::int64_t> ids_;         // the points as last followed
   std::vector<Vec3> last_x_, unwrapped_;  // wrapped as stored; continuous
   std::vector<Vec3> chosen_at_;           // unwrapped_ when partners were chosen
