@@ -90,6 +90,15 @@ Param materials_schema() {
   };
   std::vector<Param> j2_fields = elastic_fields;
   j2_fields.insert(j2_fields.end(), hardening_fields.begin(), hardening_fields.end());
+  j2_fields.push_back(
+      Param::real("zener_ratio", Dimension::kNone,
+                  "Anisotropy 2 C44/(C11 - C12) of a cubic crystal with cube axes along x, y, z; "
+                  "1 is isotropic. Other values keep E and nu as the [100] pull's and set C44 "
+                  "to zener_ratio E/(2 (1 + nu)), e.g. a DPD crystal's "
+                  "{from: <dpd_elastic stage>.zener_ratio}")
+          .def(1.0)
+          .above(0)
+          .referable());
   const auto modulus = [](const char* name, const char* doc) {
     return Param::real(name, Dimension::kPressure, doc).require().referable();
   };

@@ -130,6 +130,8 @@ config::StageKindSpec DpdElasticStage::spec() {
        "E<100> = (C11 - C12)(C11 + 2 C12)/(C11 + C12)"},
       {"poisson_ratio_100", OutputSpec::Shape::kScalar, "1",
        "C12 / (C11 + C12): lateral contraction under uniaxial stress along [100]"},
+      {"zener_ratio", OutputSpec::Shape::kScalar, "1",
+       "2 C44 / (C11 - C12): the crystal's elastic anisotropy (1: isotropic)"},
       {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa", "(C11 + 2 C12)/3"},
       {"lattice_constant", OutputSpec::Shape::kScalar, "Å", "Lattice constant used"},
       {"density", OutputSpec::Shape::kScalar, "kg/m^3", "Mass density of that crystal"},
@@ -180,6 +182,7 @@ void DpdElasticStage::run(StageContext& ctx) {
     r.add_scalar("c44_error", e.c44_error, "GPa");
     r.add_scalar("youngs_modulus_100", e.youngs_100(), "GPa");
     r.add_scalar("poisson_ratio_100", e.c12 / (e.c11 + e.c12), "1");
+    r.add_scalar("zener_ratio", 2.0 * e.c44 / (e.c11 - e.c12), "1");
     r.add_scalar("bulk_modulus", e.bulk_modulus(), "GPa");
     r.add_scalar("lattice_constant", a, "Å");
     r.add_scalar("density", rho, "kg/m^3");

@@ -18,6 +18,16 @@ struct CubicElasticity {
   double c12 = 0.0;
   double c44 = 0.0;
 
+  // The crystal whose uniaxial [100] pull has Young's modulus e and Poisson
+  // ratio nu, with anisotropy zener_ratio = 2 C44 / (C11 - C12): C11 and C12
+  // are then isotropy's lambda + 2 mu and lambda, and C44 = zener_ratio mu.
+  // Caller guarantees e > 0, -1 < nu < 0.5 and zener_ratio > 0.
+  static CubicElasticity from_100(double e, double nu, double zener_ratio) {
+    const double lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    const double mu = e / (2.0 * (1.0 + nu));
+    return {lambda + 2.0 * mu, lambda, zener_ratio * mu};
+  }
+
   // Positive definite exactly when all three hold.
   [[nodiscard]] bool stable() const { return c44 > 0.0 && c11 > c12 && c11 + 2.0 * c12 > 0.0; }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cubic_j2_plasticity.hpp"
 #include "jaumann_rotation.hpp"
 
 namespace pbms::mpm {
@@ -13,6 +14,7 @@ const ParameterRange kPoissonRatioRange = ParameterRange::open(-1.0, 0.5);
 const ParameterRange kYieldStressRange = ParameterRange::positive();
 // Softening (H < 0) makes the local problem ill-posed without regularisation.
 const ParameterRange kHardeningModulusRange = ParameterRange::non_negative();
+const ParameterRange kZenerRatioRange = ParameterRange::positive();
 
 }  // namespace
 
@@ -33,7 +35,15 @@ std::unique_ptr<Material> J2Plasticity::create(const MaterialParameters& params)
   const double nu = reader.required("poisson_ratio", kPoissonRatioRange);
   const double sy = reader.required("yield_stress", kYieldStressRange);
   const double h = reader.optional("hardening_modulus", 0.0, kHardeningModulusRange);
+  const double zener_ratio = reader.optional("zener_ratio", 1.0, kZenerRatioRange);
   reader.reject_unknown();
+  if (zener_ratio != 1.0) {
+    // E and nu stay the [100] pull's; only the shear stiffness C44 departs
+    // from isotropy, so the cubic style's cutting-plane return is needed.
+    check_parameter(kStyle, "poisson_ratio", nu, kPoissonRatioRange);
+    return std::make_unique<CubicJ2Plasticity>(CubicElasticity::from_100(e, nu, zener_ratio), sy,
+                                               h);
+  }
   return std::make_unique<J2Plasticity>(e, nu, sy, h);
 }
 

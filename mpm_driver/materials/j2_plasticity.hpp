@@ -24,7 +24,10 @@ class J2Plasticity final : public Material {
                double hardening_modulus);
 
   // Parameters: youngs_modulus, poisson_ratio, yield_stress,
-  // hardening_modulus (optional, default 0: perfectly plastic).
+  // hardening_modulus (optional, default 0: perfectly plastic), zener_ratio
+  // (optional, default 1: isotropic). A zener_ratio other than 1 makes a
+  // cubic crystal with cube axes along x, y, z whose [100] pull has that E
+  // and nu (CubicElasticity::from_100), run by CubicJ2Plasticity.
   static std::unique_ptr<Material> create(const MaterialParameters& params);
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }

@@ -8,12 +8,12 @@ source "$(dirname "$0")/lib.sh"
 #    pressure, held-out ones included (issue 18);
 #  - its C11, C12, C44 at 298 K (dpd_elastic, 8,000 sampled steps) within
 #    10 % of MD's, and C12 - C44 larger than 3 sigma with MD's sign;
-#  - the MPM rod's gauge yield within 5 % of the DPD rod's. Its gauge
-#    modulus is held within 10 %: the MPM material is the DPD crystal's
-#    cubic C11, C12, C44 at 298 K, and its rod reads about 7 % below the DPD
-#    rod, whose thin, heating, fast-pulled gauge is not the linear crystal
-#    (it reads 1.28 E<100>, the MPM rod 1.19 E<100>; docs/hierarchy.md). An
-#    isotropic E, nu material read 16 % above;
+#  - the MPM rod's gauge modulus and yield within 5 % of the DPD rod's
+#    (issue 18). The MPM material takes the DPD gauge's E and yield, nu and
+#    the anisotropy of the DPD crystal; both rods' grips are ramped over
+#    5 ps. Unramped, the pull's starting shock made the gauges read a
+#    dynamic modulus that depends on the whole stiffness tensor
+#    (docs/hierarchy.md);
 #  - a second run under a new name whose fit section differs (another
 #    optimiser budget) runs no LAMMPS: both MD stages come from the cache.
 start=$(date +%s)
@@ -51,7 +51,7 @@ sig = (dpd["c12_error"]["value"] ** 2 + dpd["c44_error"]["value"] ** 2) ** 0.5
 c.check(dd * dm > 0 and abs(dd) > 3 * sig, f"C12 - C44: DPD {dd:.1f} +- {sig:.1f} GPa, MD {dm:.1f} GPa (same sign, > 3 sigma)")
 t, m = s["tension"]["results"], s["mpm_tension"]["results"]
 a, b = t["gauge_youngs_modulus"]["value"], m["gauge_youngs_modulus"]["value"]
-c.check(abs(b / a - 1) <= 0.10, f"gauge E: MPM {b:.2f} vs DPD {a:.2f} GPa ({100 * (b / a - 1):+.1f} %, tolerance 10 %; issue 18 asks 5 %)")
+c.check(abs(b / a - 1) <= 0.05, f"gauge E: MPM {b:.2f} vs DPD {a:.2f} GPa ({100 * (b / a - 1):+.1f} %, tolerance 5 %)")
 a, b = t["gauge_yield_stress"]["value"], m["gauge_max_stress"]["value"]
 c.check(abs(b / a - 1) <= 0.05, f"gauge yield: MPM plateau {b:.2f} vs DPD first load drop {a:.2f} GPa ({100 * (b / a - 1):+.1f} %, tolerance 5 %)")
 fit = s["fit"]["results"]

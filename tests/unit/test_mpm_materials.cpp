@@ -632,9 +632,6 @@ TEST(CubicJ2Plasticity, WorkDoneEqualsStoredPlusDissipated) {
 
 // The time step needs the fastest wave in any direction: the largest
 // eigenvalue of the Christoffel matrix C_ijkl n_j n_l over many directions
-// must not exceed the modulus wave_speed uses, and must reach it.
-// The time step needs the fastest wave in any direction: the largest
-// eigenvalue of the Christoffel matrix C_ijkl n_j n_l over many directions
 // must not exceed the modulus wave_speed uses, and must reach it. Copper-like
 // anisotropy (> 1) puts the fastest wave along <111>, one below 1 along <100>.
 TEST(CubicJ2Plasticity, WaveSpeedIsTheFastestLongitudinalWave) {
@@ -655,6 +652,29 @@ TEST(CubicJ2Plasticity, WaveSpeedIsTheFastestLongitudinalWave) {
     EXPECT_LE(fastest, bound * (1 + 1e-12)) << c.c44;
     EXPECT_GT(fastest, bound * (1 - 1e-12)) << c.c44;
   }
+}
+
+// j2_plasticity with a zener_ratio: the crystal keeps the given [100] pull
+// (E<100>, nu<100> by the textbook formulas above) and has that anisotropy.
+TEST(CubicJ2Plasticity, AZenerRatioMakesJ2ACubicCrystalWithTheSamePull) {
+  const double e = 62.0, nu = 0.416, zener = 2.9;
+  const auto m = MaterialRegistry::create("j2_plasticity", {{"youngs_modulus", e},
+                                                            {"poisson_ratio", nu},
+                                                            {"yield_stress", 9.7},
+                                                            {"zener_ratio", zener}});
+  const CubicElasticity& c = dynamic_cast<const CubicJ2Plasticity&>(*m).elasticity();
+  EXPECT_LT(relative_error((c.c11 - c.c12) * (c.c11 + 2 * c.c12) / (c.c11 + c.c12), e), 1e-14);
+  EXPECT_LT(relative_error(c.c12 / (c.c11 + c.c12), nu), 1e-14);
+  EXPECT_LT(relative_error(2 * c.c44 / (c.c11 - c.c12), zener), 1e-14);
+  const auto iso = MaterialRegistry::create(
+      "j2_plasticity", {{"youngs_modulus", e}, {"poisson_ratio", nu}, {"yield_stress", 9.7}});
+  EXPECT_EQ(iso->style(), "j2_plasticity");
+  EXPECT_NE(error_of("j2_plasticity", {{"youngs_modulus", e},
+                                       {"poisson_ratio", nu},
+                                       {"yield_stress", 9.7},
+                                       {"zener_ratio", 0.0}})
+                .find("0 < zener_ratio"),
+            std::string::npos);
 }
 
 TEST(CubicJ2Plasticity, RefusesAnUnstableCrystal) {
