@@ -40,7 +40,6 @@ std::unique_ptr<Material> J2Plasticity::create(const MaterialParameters& params)
   if (zener_ratio != 1.0) {
     // E and nu stay the [100] pull's; only the shear stiffness C44 departs
     // from isotropy, so the cubic style's cutting-plane return is needed.
-    check_parameter(kStyle, "poisson_ratio", nu, kPoissonRatioRange);
     return std::make_unique<CubicJ2Plasticity>(CubicElasticity::from_100(e, nu, zener_ratio), sy,
                                                h);
   }
