@@ -26,15 +26,15 @@ constexpr double kReturnTolerance = 1e-12;
 }  // namespace
 
 CubicJ2Plasticity::CubicJ2Plasticity(CubicElasticity elasticity, double yield_stress,
-                                     double hardening_modulus)
-    : elasticity_(elasticity), hardening_{yield_stress, hardening_modulus} {
-  check_parameter(kStyle, "yield_stress", yield_stress, kYieldStressRange);
-  check_parameter(kStyle, "hardening_modulus", hardening_modulus, kHardeningModulusRange);
+                                     double hardening_modulus, std::string_view style)
+    : elasticity_(elasticity), hardening_{yield_stress, hardening_modulus}, style_(style) {
+  check_parameter(style_, "yield_stress", yield_stress, kYieldStressRange);
+  check_parameter(style_, "hardening_modulus", hardening_modulus, kHardeningModulusRange);
   if (!elasticity_.stable()) {
     throw Error(fmt::format(
         "{}: c11 = {}, c12 = {}, c44 = {} is not a stable cubic crystal; it needs c44 > 0, "
         "c11 > c12 and c11 + 2 c12 > 0",
-        kStyle, elasticity_.c11, elasticity_.c12, elasticity_.c44));
+        style_, elasticity_.c11, elasticity_.c12, elasticity_.c44));
   }
 }
 
@@ -79,7 +79,7 @@ void CubicJ2Plasticity::return_to_yield_surface(SymmetricTensor& stress,
     plastic_strain += multiplier;
   }
   throw Error(fmt::format("{}: the return to the yield surface did not converge in {} passes",
-                          kStyle, kMaxReturnIterations));
+                          style_, kMaxReturnIterations));
 }
 
 double CubicJ2Plasticity::wave_speed(const MaterialPointState& state) const {

@@ -24,14 +24,17 @@ class CubicJ2Plasticity final : public Material {
   static constexpr std::string_view kStyle = "cubic_j2_plasticity";
 
   // Throws pbms::Error unless the stiffness is positive definite,
-  // yield_stress > 0 and hardening_modulus >= 0.
-  CubicJ2Plasticity(CubicElasticity elasticity, double yield_stress, double hardening_modulus);
+  // yield_stress > 0 and hardening_modulus >= 0. `style` names the material
+  // in errors and style(): j2_plasticity with a zener_ratio builds one too,
+  // and its user should read the kind they wrote.
+  CubicJ2Plasticity(CubicElasticity elasticity, double yield_stress, double hardening_modulus,
+                    std::string_view style = kStyle);
 
   // Parameters: c11, c12, c44, yield_stress, hardening_modulus (optional,
   // default 0: perfectly plastic).
   static std::unique_ptr<Material> create(const MaterialParameters& params);
 
-  [[nodiscard]] std::string_view style() const override { return kStyle; }
+  [[nodiscard]] std::string_view style() const override { return style_; }
   void update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const override;
   // The fastest elastic longitudinal wave (<100> or <111>).
   [[nodiscard]] double wave_speed(const MaterialPointState& state) const override;
@@ -49,6 +52,7 @@ class CubicJ2Plasticity final : public Material {
 
   CubicElasticity elasticity_;
   LinearHardening hardening_;
+  std::string_view style_;
 };
 
 }  // namespace pbms::mpm

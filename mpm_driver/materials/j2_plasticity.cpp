@@ -40,8 +40,8 @@ std::unique_ptr<Material> J2Plasticity::create(const MaterialParameters& params)
   if (zener_ratio != 1.0) {
     // E and nu stay the [100] pull's; only the shear stiffness C44 departs
     // from isotropy, so the cubic style's cutting-plane return is needed.
-    return std::make_unique<CubicJ2Plasticity>(CubicElasticity::from_100(e, nu, zener_ratio), sy,
-                                               h);
+    return std::make_unique<CubicJ2Plasticity>(CubicElasticity::from_100(e, nu, zener_ratio), sy, h,
+                                               kStyle);
   }
   return std::make_unique<J2Plasticity>(e, nu, sy, h);
 }
