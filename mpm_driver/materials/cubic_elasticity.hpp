@@ -9,6 +9,7 @@
 
 #include <algorithm>
 
+#include "isotropic_elasticity.hpp"
 #include "symmetric_tensor.hpp"
 
 namespace pbms::mpm {
@@ -23,9 +24,9 @@ struct CubicElasticity {
   // are then isotropy's lambda + 2 mu and lambda, and C44 = zener_ratio mu.
   // Caller guarantees e > 0, -1 < nu < 0.5 and zener_ratio > 0.
   static CubicElasticity from_100(double e, double nu, double zener_ratio) {
-    const double lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    const double mu = e / (2.0 * (1.0 + nu));
-    return {lambda + 2.0 * mu, lambda, zener_ratio * mu};
+    const IsotropicElasticity iso =
+        IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(e, nu);
+    return {iso.p_wave_modulus(), iso.lambda, zener_ratio * iso.shear_modulus};
   }
 
   // Positive definite exactly when all three hold.
