@@ -1,6 +1,7 @@
 #include "pbms/analysis/tension_test.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -72,6 +73,25 @@ TensionTest TensionTest::from_yaml(const YAML::Node& t) {
   return s;
 }
 
+namespace {
+
+// The (strain, value) samples whose strain is at most `end`: the points a
+// modulus is fitted to.
+std::pair<std::vector<double>, std::vector<double>> samples_up_to(const std::vector<double>& strain,
+                                                                  const std::vector<double>& value,
+                                                                  double end) {
+  std::pair<std::vector<double>, std::vector<double>> xy;
+  for (std::size_t k = 0; k < strain.size() && k < value.size(); ++k) {
+    if (strain[k] <= end) {
+      xy.first.push_back(strain[k]);
+      xy.second.push_back(value[k]);
+    }
+  }
+  return xy;
+}
+
+}  // namespace
+
 double TensionTest::fit_end(const std::vector<double>& strain,
                             const std::vector<double>& stress) const {
   // The elastic part ends at the stress maximum unless the config bounds it.
@@ -85,13 +105,7 @@ void TensionTest::report_grips(StageResults& r, const std::vector<double>& strai
                                const std::vector<double>& grip_stress,
                                const std::string& stage) const {
   const double end = fit_end(strain, stress);
-  std::vector<double> fx, fy;
-  for (std::size_t k = 0; k < strain.size() && k < grip_stress.size(); ++k) {
-    if (strain[k] <= end) {
-      fx.push_back(strain[k]);
-      fy.push_back(grip_stress[k]);
-    }
-  }
+  const auto [fx, fy] = samples_up_to(strain, grip_stress, end);
   if (fx.size() < 3) {
     throw Error(
         fmt::format("stage '{}': fewer than 3 grip samples up to a strain of {:.4g}", stage, end));
@@ -106,13 +120,7 @@ void TensionTest::report(StageResults& r, const std::vector<double>& strain,
   const auto peak =
       static_cast<std::size_t>(std::max_element(stress.begin(), stress.end()) - stress.begin());
   const double end = fit_end(strain, stress);
-  std::vector<double> fx, fy;
-  for (std::size_t k = 0; k < strain.size(); ++k) {
-    if (strain[k] <= end) {
-      fx.push_back(strain[k]);
-      fy.push_back(stress[k]);
-    }
-  }
+  const auto [fx, fy] = samples_up_to(strain, stress, end);
   if (fx.size() < 3) {
     throw Error(fmt::format(
         "stage '{}': fewer than 3 samples up to a strain of {:.4g}; run longer or sample more "
