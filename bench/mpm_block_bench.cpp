@@ -16,11 +16,12 @@
 #include <vector>
 
 #include "materials/material_registry.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 #include "pbms/grid/shape_function.hpp"
-#include "solver/mpm_solver.hpp"
 
 using namespace pbms;
 using namespace pbms::mpm;
+using namespace pbms::grid;
 using Clock = std::chrono::steady_clock;
 
 namespace {

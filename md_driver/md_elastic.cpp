@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "md_setup.hpp"
+#include "pbms/analysis/cubic_moduli.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/units.hpp"
 
@@ -11,13 +12,6 @@ namespace pbms::md {
 using config::OutputSpec;
 using config::Param;
 using units::Dimension;
-
-double cubic_bulk_modulus(double c11, double c12) {
-  return (c11 + 2.0 * c12) / 3.0;
-}
-double cubic_youngs_modulus_100(double c11, double c12) {
-  return (c11 - c12) * (c11 + 2.0 * c12) / (c11 + c12);
-}
 
 config::StageKindSpec ElasticStage::spec() {
   config::StageKindSpec s;
@@ -153,9 +147,6 @@ void ElasticStage::run(StageContext& ctx) {
   auto& r = ctx.results();
   std::vector<double> col_t, col_mode, col_e, col_xx, col_yy, col_zz, col_xy;
 
-  struct Constants {
-    double c11, c12, c44;
-  };
   const int total = temperature > 0 ? 8 : 4;
   int done = 0;
   auto measure = [&](double t, double a) {
@@ -178,8 +169,9 @@ void ElasticStage::run(StageContext& ctx) {
         ctx.progress(++done, total, 0.0, tag);
       }
     }
-    return Constants{(s[0][0].xx - s[0][1].xx) / (2 * e), (s[0][0].yy - s[0][1].yy) / (2 * e),
-                     (s[1][0].xy - s[1][1].xy) / (2 * e)};
+    return analysis::CubicModuli{(s[0][0].xx - s[0][1].xx) / (2 * e),
+                                 (s[0][0].yy - s[0][1].yy) / (2 * e),
+                                 (s[1][0].xy - s[1][1].xy) / (2 * e)};
   };
 
   // The 0 K lattice parameter comes from the first relaxation; record it.
@@ -191,14 +183,14 @@ void ElasticStage::run(StageContext& ctx) {
     lmp.command("run 0");
     r.add_scalar("lattice_parameter", lmp.thermo("lx") / cells[0], "Å");
   }
-  const Constants cold = measure(0.0, mat.lattice_constant);
+  const analysis::CubicModuli cold = measure(0.0, mat.lattice_constant);
   r.add_scalar("c11", cold.c11, "GPa");
   r.add_scalar("c12", cold.c12, "GPa");
   r.add_scalar("c44", cold.c44, "GPa");
-  r.add_scalar("bulk_modulus", cubic_bulk_modulus(cold.c11, cold.c12), "GPa");
-  r.add_scalar("youngs_modulus_100", cubic_youngs_modulus_100(cold.c11, cold.c12), "GPa");
+  r.add_scalar("bulk_modulus", cold.bulk_modulus(), "GPa");
+  r.add_scalar("youngs_modulus_100", cold.youngs_modulus_100(), "GPa");
   if (temperature > 0) {
-    const Constants hot = measure(temperature, a_t);
+    const analysis::CubicModuli hot = measure(temperature, a_t);
     r.add_scalar("c11_at_t", hot.c11, "GPa");
     r.add_scalar("c12_at_t", hot.c12, "GPa");
     r.add_scalar("c44_at_t", hot.c44, "GPa");

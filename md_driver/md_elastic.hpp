@@ -12,8 +12,4 @@ class ElasticStage : public StageKind {
   void run(StageContext& ctx) override;
 };
 
-// Cubic-crystal relations, in the units of the inputs.
-double cubic_bulk_modulus(double c11, double c12);
-double cubic_youngs_modulus_100(double c11, double c12);
-
 }  // namespace pbms::md

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "md_setup.hpp"
+#include "pbms/analysis/block_average.hpp"
 #include "pbms/analysis/equation_of_state.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
@@ -142,11 +143,11 @@ void IsothermStage::run(StageContext& ctx) {
                tt = column(prod, 3);
     p_target.push_back(pressures[i]);
     p_mean.push_back(analysis::mean(press));
-    p_err.push_back(analysis::block_standard_error(press));
+    p_err.push_back(analysis::block_average(press, 10).error);
     vol.push_back(analysis::mean(va));
-    vol_err.push_back(analysis::block_standard_error(va));
+    vol_err.push_back(analysis::block_average(va, 10).error);
     alat.push_back(analysis::mean(aa));
-    alat_err.push_back(analysis::block_standard_error(aa));
+    alat_err.push_back(analysis::block_average(aa, 10).error);
     temp.push_back(analysis::mean(tt));
     if (ctx.rank() == 0) {
       lmp.write_script(

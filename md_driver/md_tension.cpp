@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "md_setup.hpp"
+#include "pbms/analysis/block_average.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/units.hpp"
@@ -353,7 +354,7 @@ void report(StageContext& ctx, const Settings& s, std::vector<std::vector<double
       if (strain[i] <= s.fit_max) lateral.push_back(0.5 * (syy[i] + szz[i]));
     }
     r.add_scalar("lateral_stress", analysis::mean(lateral), "GPa",
-                 analysis::block_standard_error(lateral, 10));
+                 analysis::block_average(lateral, 10).error);
     r.add_column("stress_strain", "stress_yy", "GPa", syy);
     r.add_column("stress_strain", "stress_zz", "GPa", szz);
     r.add_column("stress_strain", "temperature", "K", column(rows, 4));

@@ -1,5 +1,7 @@
 #include "pbms/analysis/statistics.hpp"
 
+#include "pbms/analysis/block_average.hpp"
+
 #include <cmath>
 #include <numeric>
 
@@ -12,22 +14,6 @@ namespace pbms::analysis {
 double mean(const std::vector<double>& x) {
   if (x.empty()) throw Error("mean of an empty series");
   return std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
-}
-
-double block_standard_error(const std::vector<double>& x, int blocks) {
-  const size_t per = x.size() / static_cast<size_t>(blocks);
-  if (blocks < 2 || per == 0) return std::nan("");
-  std::vector<double> means;
-  for (int b = 0; b < blocks; ++b) {
-    double s = 0.0;
-    for (size_t i = 0; i < per; ++i) s += x[static_cast<size_t>(b) * per + i];
-    means.push_back(s / static_cast<double>(per));
-  }
-  const double m = mean(means);
-  double var = 0.0;
-  for (double v : means) var += (v - m) * (v - m);
-  var /= static_cast<double>(blocks - 1);
-  return std::sqrt(var / static_cast<double>(blocks));
 }
 
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
@@ -97,12 +83,12 @@ double slope_block_error(const std::vector<double>& x, const std::vector<double>
   for (double v : x) sxx += (v - mx) * (v - mx);
   if (sxx <= 0.0) return std::nan("");
   // block_se^2 * used is the variance per sample that the correlations
-  // leave, where `used` counts the samples block_standard_error keeps (it
+  // leave, where `used` counts the samples block_average keeps (it
   // drops the remainder of n / blocks). It divides by blocks - 1, right for
   // a mean; the parabola took three parameters from the same residuals, so
   // blocks - 3 (without it the error is sqrt(7/9), 12 %, low on white noise
   // with 10 blocks).
-  const double se = block_standard_error(residuals_about_parabola(x, y), blocks);
+  const double se = block_average(residuals_about_parabola(x, y), blocks).error;
   const double used = static_cast<double>(n / static_cast<size_t>(blocks) * blocks);
   const double dof = static_cast<double>(blocks - 1) / static_cast<double>(blocks - 3);
   return se * std::sqrt(used * dof / sxx);

@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
+#include "pbms/analysis/strain_states.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/units.hpp"
-#include "properties/strain_states.hpp"
 
 namespace pbms::coupler::fit {
 namespace {
@@ -50,9 +50,9 @@ double exact_scalar(const StageResults& r, const std::string& key, const std::st
 
 // The block means of one strained state's stress (dpd_elastic with a
 // strain_state), GPa.
-std::vector<dpd::CauchyStress> state_stress(const StageResults& r) {
+std::vector<analysis::CauchyStress> state_stress(const StageResults& r) {
   static constexpr std::array<const char*, 6> kComponents{"xx", "yy", "zz", "xy", "xz", "yz"};
-  std::vector<dpd::CauchyStress> blocks;
+  std::vector<analysis::CauchyStress> blocks;
   for (size_t k = 0; k < kComponents.size(); ++k) {
     const std::vector<double>& column = exact_column(r, kComponents[k], "GPa");
     blocks.resize(column.size());
@@ -149,7 +149,7 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
   // Every request goes out as soon as it can; the scheduler queues what the
   // groups cannot take yet. The four strained states follow the lattice
   // constant, each a request of its own, so that they spread over the
-  // groups; dpd::elastic_constants_from_states below combines them as the
+  // groups; analysis::elastic_constants_from_states below combines them as the
   // dpd_elastic stage does.
   std::map<protocol::RequestId, Answer> answers;
   while (answers.size() < pending.size()) {
@@ -159,10 +159,10 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     const auto* done = std::get_if<protocol::StageDone>(&*a);
     if (done && pending.at(id).lattice) {
       const double a0 = exact_column(done->results, "lattice_constant", "Å").at(0);
-      for (size_t s = 0; s < dpd::kStrainStates.size(); ++s) {
+      for (size_t s = 0; s < analysis::kStrainStates.size(); ++s) {
         YAML::Node params = crystal_params(temperature);
         params["zero_pressure"] = false;
-        params["strain_state"] = dpd::strain_state_name(dpd::kStrainStates[s]);
+        params["strain_state"] = analysis::strain_state_name(analysis::kStrainStates[s]);
         pending.emplace(scheduler.submit(kDriver, request("dpd_elastic", params, potential, a0)),
                         Pending{{}, false, s});
       }
@@ -186,7 +186,7 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     j.volume_per_atom.assign(n, 0.0);
     j.pressure_error.assign(n, 0.0);
   }
-  std::array<std::vector<dpd::CauchyStress>, 4> states;
+  std::array<std::vector<analysis::CauchyStress>, 4> states;
   std::optional<double> strain;
   for (const auto& [id, p] : pending) {
     const auto& r = std::get<protocol::StageDone>(answers.at(id)).results;
@@ -210,7 +210,7 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     }
   }
   if (settings_.elastic) {
-    const dpd::ElasticConstants e = dpd::elastic_constants_from_states(states, *strain);
+    const analysis::ElasticConstants e = analysis::elastic_constants_from_states(states, *strain);
     j.c11 = units::to_metal(e.c11, "GPa");
     j.c12 = units::to_metal(e.c12, "GPa");
     j.c44 = units::to_metal(e.c44, "GPa");

@@ -5,10 +5,6 @@
 
 namespace pbms::dpd {
 
-// The solver's records are what the link sums.
-static_assert(mpm::MpmSolver::kHeldStride == coupling::kHeldLanes);
-static_assert(mpm::sums::kHeldAxes == coupling::lanes::kHeldAxes);
-
 ConcurrentDpdSide::ConcurrentDpdSide(DpdEngine& engine, DpdGridStep& grid, int partner_type)
     : engine_(engine), grid_(grid), partner_type_(partner_type) {}
 

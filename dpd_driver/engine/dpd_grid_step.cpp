@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "materials/stressless_particle.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/shape_function.hpp"
+#include "pbms/grid/stressless_particle.hpp"
 #include "pbms/mpi/comm.hpp"
 #include "pbms/units.hpp"
 
@@ -93,17 +93,17 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
   halo_ = std::make_unique<mpi::HaloSum>(engine_.comm(), *partition_);
   // One rank sums too: a periodic axis's last node layer is the first's
   // image and must hold the whole sum, as in an MPM run.
-  mpm::GridPatch patch{grid, partition_->nodes_of(engine_.domain().rank()), periodic, {}};
+  grid::GridPatch patch{grid, partition_->nodes_of(engine_.domain().rank()), periodic, {}};
   if (!halo_->empty()) {
     patch.sum_shared = [this](double* data, int components, int stride) {
       halo_->sum(data, components, stride);
     };
   }
-  std::vector<std::unique_ptr<mpm::Material>> materials;
-  materials.push_back(std::make_unique<mpm::StresslessParticle>());
-  mpm::SolverOptions opt;
+  std::vector<std::unique_ptr<grid::Material>> materials;
+  materials.push_back(std::make_unique<grid::StresslessParticle>());
+  grid::SolverOptions opt;
   opt.flip = settings.flip;
-  opt.units = mpm::UnitSystem::metal();
+  opt.units = grid::UnitSystem::metal();
   opt.point_noun = "DPD particle";
   // MPM's small-mass floor drops the momentum of the nodes it skips (the
   // momentum test of a thermostatted crystal lost 4e-5 of sum m|v| over 200
@@ -113,7 +113,7 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
   opt.small_mass_fraction = 0.0;
   const DpdParticles& p = engine_.particles();
   opt.reference_point_mass = *std::min_element(p.mass_per_type.begin(), p.mass_per_type.end());
-  solver_ = std::make_unique<mpm::MpmSolver>(
+  solver_ = std::make_unique<grid::MpmSolver>(
       std::move(patch), grid::ShapeFunctionRegistry::create("linear"), std::move(materials), opt);
   for (const auto& g : settings.rigid) {
     bc_.point_velocities.push_back({g.mask, {true, true, true}, g.velocity});
@@ -129,8 +129,8 @@ void DpdGridStep::load_points() {
   // Particles come and go with migration; the points' deformation and
   // state carry nothing for stressless particles, so fresh ones do.
   if (points_.size() != n) {
-    points_ = mpm::MaterialPoints{};
-    mpm::MaterialPointState s;
+    points_ = grid::MaterialPoints{};
+    grid::MaterialPointState s;
     for (std::size_t i = 0; i < n; ++i) {
       s.density = p.mass(i) / point_volume_;
       points_.add(p.id[i], p.x[i], point_volume_, s, 0, p.group_mask[i]);
@@ -158,7 +158,7 @@ void DpdGridStep::store_points() {
   const OrthogonalBox& box = engine_.domain().box();
   const grid::RegularGrid& g = solver_->grid();
   for (std::size_t i = 0; i < engine_.owned(); ++i) {
-    const mpm::Vec3 before = g.wrapped(p.x[i], box.periodic);
+    const grid::Vec3 before = g.wrapped(p.x[i], box.periodic);
     for (std::size_t a = 0; a < 3; ++a) {
       double moved = points_.x[i][a] - before[a];
       if (box.periodic[a]) {
@@ -172,7 +172,7 @@ void DpdGridStep::store_points() {
   }
 }
 
-void DpdGridStep::set_rigid_velocity(std::uint32_t mask, const mpm::Vec3& v) {
+void DpdGridStep::set_rigid_velocity(std::uint32_t mask, const grid::Vec3& v) {
   for (std::size_t b = 0; b < settings_.rigid.size(); ++b) {
     if (settings_.rigid[b].mask == mask && !settings_.rigid[b].free_body) {
       bc_.point_velocities[b].velocity = v;
@@ -220,7 +220,7 @@ void DpdGridStep::balance_free_bodies() {
     // particles (held minus FLIP-PIC blend: the FLIP part's weight times
     // the nodes' old velocities weighted by the body's share, less its
     // particles' own momentum).
-    mpm::Vec3 dv{};
+    grid::Vec3 dv{};
     for (std::size_t a = 0; a < 3; ++a) {
       const double pushed =
           row[a] * dt / units::kMvv2e + settings_.flip * (row[3 + a] - row[6 + a]);

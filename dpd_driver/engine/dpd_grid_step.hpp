@@ -36,10 +36,10 @@
 #include <vector>
 
 #include "engine/dpd_engine.hpp"
+#include "pbms/grid/boundary_conditions.hpp"
 #include "pbms/grid/grid_partition.hpp"
-#include "pbms/mpi/halo_sum.hpp"
-#include "solver/boundary_conditions.hpp"
-#include "solver/mpm_solver.hpp"
+#include "pbms/grid/halo_sum.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 
 namespace pbms::dpd {
 
@@ -56,7 +56,7 @@ struct DpdGridSettings {
   // others keep theirs (grips, walls).
   struct RigidGroup {
     std::uint32_t mask = 0;
-    mpm::Vec3 velocity{0.0, 0.0, 0.0};
+    grid::Vec3 velocity{0.0, 0.0, 0.0};
     bool free_body = false;
   };
   std::vector<RigidGroup> rigid;
@@ -94,7 +94,7 @@ class DpdGridStep {
 
   // The velocity a rigid (not free) group of settings.rigid moves at from
   // the next step on (a grip on a velocity ramp).
-  void set_rigid_velocity(std::uint32_t mask, const mpm::Vec3& v);
+  void set_rigid_velocity(std::uint32_t mask, const grid::Vec3& v);
 
   // Whether each compute_forces also tallies the pair energy
   // (DpdEngine::last_tally), for a ledger kept every step: a few operations
@@ -109,7 +109,7 @@ class DpdGridStep {
 
   // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
   // update_nodes, and the remapped momentum after map_back.
-  [[nodiscard]] mpm::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
+  [[nodiscard]] grid::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
 
   // Between update_nodes and map_back: the nodes the rigid groups hold
   // (MpmSolver::held_nodes), and holding those another program holds.
@@ -122,7 +122,7 @@ class DpdGridStep {
   // The split of the grid over the engine's ranks, which is also the
   // engine's decomposition; nodal_sums() covers nodes_of(this rank).
   [[nodiscard]] const grid::GridPartition& partition() const { return *partition_; }
-  [[nodiscard]] const mpm::MpmSolver& solver() const { return *solver_; }
+  [[nodiscard]] const grid::MpmSolver& solver() const { return *solver_; }
 
  private:
   void init(const grid::RegularGrid& grid, const std::array<bool, 3>& periodic);
@@ -146,11 +146,11 @@ class DpdGridStep {
   // Addressed by halo_ and solver_, so kept at one place.
   std::unique_ptr<grid::GridPartition> partition_;
   std::unique_ptr<mpi::HaloSum> halo_;
-  std::unique_ptr<mpm::MpmSolver> solver_;
-  mpm::MaterialPoints points_;
+  std::unique_ptr<grid::MpmSolver> solver_;
+  grid::MaterialPoints points_;
   double point_volume_ = 0.0;  // Å³; only a stress term uses it, and that is zero
-  mpm::BoundaryConditions bc_;
-  std::vector<mpm::Vec3> forces_;
+  grid::BoundaryConditions bc_;
+  std::vector<grid::Vec3> forces_;
   Tally tally_ = Tally::kForcesOnly;
 };
 

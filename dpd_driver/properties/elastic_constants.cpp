@@ -65,8 +65,8 @@ int cells_for(double edge, double shrink, double reach, int at_least) {
   return std::max(needed, at_least);
 }
 
-CauchyStress instantaneous_stress(const DpdParticles& particles, const PairResult& pair,
-                                  double volume) {
+analysis::CauchyStress instantaneous_stress(const DpdParticles& particles, const PairResult& pair,
+                                            double volume) {
   std::array<double, 6> kinetic{};
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3& v = particles.v[i];
@@ -78,7 +78,7 @@ CauchyStress instantaneous_stress(const DpdParticles& particles, const PairResul
     kinetic[4] += m * v[0] * v[2];
     kinetic[5] += m * v[1] * v[2];
   }
-  CauchyStress s{};
+  analysis::CauchyStress s{};
   const double scale = -kGpaPerEvPerA3 / volume;
   for (int c = 0; c < 6; ++c) s[c] = scale * (kinetic[c] * units::kMvv2e + pair.virial[c]);
   return s;
@@ -104,9 +104,9 @@ FccCrystal reference_crystal(const PairStyle& pair, const CrystalSpec& crystal,
 }
 
 // The stress samples of `reference` strained by `e`.
-std::vector<CauchyStress> run_strained(PairStyle& pair, const FccCrystal& reference,
-                                       const ThermalSettings& thermal, double lattice_constant,
-                                       const Vec3& e) {
+std::vector<analysis::CauchyStress> run_strained(PairStyle& pair, const FccCrystal& reference,
+                                                 const ThermalSettings& thermal,
+                                                 double lattice_constant, const Vec3& e) {
   FccCrystal strained = reference;
   apply_strain(strained, e);
   return sample_stress(pair, std::move(strained), thermal, lattice_constant);
@@ -137,14 +137,15 @@ void check_property_settings(const CrystalSpec& crystal, const ThermalSettings& 
   }
   if (!(thermal.dt > 0.0)) throw Error(where + "dt must be > 0 ps");
   if (thermal.equilibration_steps < 0) throw Error(where + "equilibration_steps must be >= 0");
-  if (thermal.sampling_steps < kBlocks) {
-    throw Error(where + "sampling_steps must be >= " + std::to_string(kBlocks) +
+  if (thermal.sampling_steps < analysis::kStateBlocks) {
+    throw Error(where + "sampling_steps must be >= " + std::to_string(analysis::kStateBlocks) +
                 " (one per error block)");
   }
 }
 
-std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
-                                        const ThermalSettings& thermal, double lattice_constant) {
+std::vector<analysis::CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
+                                                  const ThermalSettings& thermal,
+                                                  double lattice_constant) {
   DpdParticles& particles = crystal.particles;
   const double volume = crystal.box.volume();
   if (is_static(thermal)) {
@@ -163,7 +164,7 @@ std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
                        thermal.temperature, thermal.seed};
   DpdIntegrator integrator(particles, crystal.box, pair, settings);
   for (int s = 0; s < thermal.equilibration_steps; ++s) integrator.step();
-  std::vector<CauchyStress> samples;
+  std::vector<analysis::CauchyStress> samples;
   samples.reserve(static_cast<std::size_t>(thermal.sampling_steps));
   for (int s = 0; s < thermal.sampling_steps; ++s) {
     const PairResult result = integrator.step(Tally::kEnergyAndVirial);
@@ -180,18 +181,19 @@ double elastic_strain(const ThermalSettings& thermal, double strain) {
   return strain;
 }
 
-std::vector<CauchyStress> strain_state_stress(PairStyle& pair, const CrystalSpec& crystal,
-                                              const ThermalSettings& thermal, StrainState state,
-                                              double strain) {
+std::vector<analysis::CauchyStress> strain_state_stress(PairStyle& pair, const CrystalSpec& crystal,
+                                                        const ThermalSettings& thermal,
+                                                        analysis::StrainState state,
+                                                        double strain) {
   check_property_settings(crystal, thermal);
   strain = elastic_strain(thermal, strain);
   const FccCrystal reference = reference_crystal(pair, crystal, thermal, strain);
-  return stress_block_means(
-      run_strained(pair, reference, thermal, crystal.lattice_constant, strain_of(state, strain)));
+  return analysis::stress_block_means(run_strained(
+      pair, reference, thermal, crystal.lattice_constant, analysis::strain_of(state, strain)));
 }
 
-ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
-                                   const ThermalSettings& thermal, double strain) {
+analysis::ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
+                                             const ThermalSettings& thermal, double strain) {
   check_property_settings(crystal, thermal);
   strain = elastic_strain(thermal, strain);
   const FccCrystal reference = reference_crystal(pair, crystal, thermal, strain);
@@ -199,15 +201,15 @@ ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
   // The four states one after the other, each reduced to its block means
   // as strain_state_stress does, so that a fit sampling them apart gets
   // these bits.
-  std::array<std::vector<CauchyStress>, 4> blocks;
-  for (std::size_t i = 0; i < kStrainStates.size(); ++i) {
-    blocks[i] = stress_block_means(
-        run_strained(pair, reference, thermal, a, strain_of(kStrainStates[i], strain)));
+  std::array<std::vector<analysis::CauchyStress>, 4> blocks;
+  for (std::size_t i = 0; i < analysis::kStrainStates.size(); ++i) {
+    blocks[i] = analysis::stress_block_means(run_strained(
+        pair, reference, thermal, a, analysis::strain_of(analysis::kStrainStates[i], strain)));
   }
-  ElasticConstants result = elastic_constants_from_states(blocks, strain);
+  analysis::ElasticConstants result = analysis::elastic_constants_from_states(blocks, strain);
   if (is_static(thermal)) {
     result.pressure =
-        pressure_of(run_strained(pair, reference, thermal, a, {0.0, 0.0, 0.0}).front());
+        analysis::pressure_of(run_strained(pair, reference, thermal, a, {0.0, 0.0, 0.0}).front());
   }
   return result;
 }

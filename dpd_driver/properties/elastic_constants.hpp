@@ -36,7 +36,7 @@
 
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/pair_style.hpp"
-#include "properties/strain_states.hpp"
+#include "pbms/analysis/strain_states.hpp"
 
 namespace pbms::dpd {
 
@@ -107,8 +107,8 @@ inline constexpr int kElasticSamplingSteps = 8000;
 // style (styles keep per-call state); calls with their own styles may run concurrently. Throws
 // pbms::Error for a non-positive lattice constant, a negative cell count, a strain outside [0,
 // 0.05], invalid thermal settings, or crystal.cells > 0 too few for the neighbour list.
-ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
-                                   const ThermalSettings& thermal, double strain = 0.0);
+analysis::ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
+                                             const ThermalSettings& thermal, double strain = 0.0);
 
 // One of the four strained states of elastic_constants on its own: the block
 // means of its sampled stress (stress_block_means, strain_states.hpp), for
@@ -116,9 +116,10 @@ ElasticConstants elastic_constants(PairStyle& pair, const CrystalSpec& crystal,
 // elastic_constants, so the four states sampled apart (by different rank
 // groups of a fit) combine to the same bits as one elastic_constants call.
 // Throws as elastic_constants.
-std::vector<CauchyStress> strain_state_stress(PairStyle& pair, const CrystalSpec& crystal,
-                                              const ThermalSettings& thermal, StrainState state,
-                                              double strain = 0.0);
+std::vector<analysis::CauchyStress> strain_state_stress(PairStyle& pair, const CrystalSpec& crystal,
+                                                        const ThermalSettings& thermal,
+                                                        analysis::StrainState state,
+                                                        double strain = 0.0);
 
 // The strain a call of the two above uses: `strain`, or for 0 kStaticStrain
 // at temperature 0 and kThermalStrain above. Throws pbms::Error for a
@@ -141,8 +142,9 @@ double sampling_neighbour_reach(const PairStyle& pair, const ThermalSettings& th
 // equilibration (Maxwell–Boltzmann velocities at 2T, which equipartition
 // brings to T within a phonon period, then DPD at T). Throws pbms::Error
 // for a box too small for the neighbour list.
-std::vector<CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
-                                        const ThermalSettings& thermal, double lattice_constant);
+std::vector<analysis::CauchyStress> sample_stress(PairStyle& pair, FccCrystal crystal,
+                                                  const ThermalSettings& thermal,
+                                                  double lattice_constant);
 
 // Throws pbms::Error, naming the offending field, for invalid settings.
 void check_property_settings(const CrystalSpec& crystal, const ThermalSettings& thermal);

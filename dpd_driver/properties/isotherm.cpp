@@ -100,11 +100,11 @@ IsothermPoint isotherm_point(PairStyle& pair, const CrystalSpec& reference,
                 std::to_string(needed) + " (or 0, automatic)");
   }
   const int cells = std::max(needed, reference.cells);
-  const std::vector<CauchyStress> samples =
+  const std::vector<analysis::CauchyStress> samples =
       sample_stress(pair, fcc_crystal(cells, cells, cells, a, reference.mass), thermal, a);
   std::vector<double> pressure(samples.size());
-  for (std::size_t k = 0; k < samples.size(); ++k) pressure[k] = pressure_of(samples[k]);
-  const BlockAverage p = block_average(pressure);
+  for (std::size_t k = 0; k < samples.size(); ++k) pressure[k] = analysis::pressure_of(samples[k]);
+  const analysis::BlockAverage p = analysis::block_average(pressure, analysis::kStateBlocks);
   if (!std::isfinite(p.mean)) {
     throw StageFailure("DPD isotherm: the pressure at V/V0 = " + std::to_string(volume_ratio) +
                        " is not finite (the crystal came apart)");

@@ -27,14 +27,15 @@ SampledStress sample_state(PairStyle& pair, FccCrystal crystal, const ThermalSet
   crystal.box.lo[0] *= factor;
   crystal.box.hi[0] *= factor;
   for (auto& x : crystal.particles.x) x[0] *= factor;
-  const std::vector<CauchyStress> samples = sample_stress(pair, crystal, thermal, lattice_constant);
+  const std::vector<analysis::CauchyStress> samples =
+      sample_stress(pair, crystal, thermal, lattice_constant);
   std::vector<double> xx(samples.size()), lateral(samples.size());
   for (std::size_t k = 0; k < samples.size(); ++k) {
     xx[k] = samples[k][0];
     lateral[k] = 0.5 * (samples[k][1] + samples[k][2]);
   }
-  const BlockAverage s = block_average(xx);
-  return {s.mean, s.error, block_average(lateral).mean};
+  const analysis::BlockAverage s = analysis::block_average(xx, analysis::kStateBlocks);
+  return {s.mean, s.error, analysis::block_average(lateral, analysis::kStateBlocks).mean};
 }
 
 // The cubic crystal with enough cells along x for the neighbour list at

@@ -12,11 +12,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include "dpd_part_of_body.hpp"
+#include "dpd_run.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
+#include "pbms/coupling/concurrent_spec.hpp"
 #include "pbms/coupling/conservation_ledger.hpp"
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/cross_program_link.hpp"
@@ -188,6 +190,10 @@ void report_opening(StageResults& r, const std::vector<double>& t,
 }
 
 }  // namespace
+
+config::StageKindSpec ConcurrentStage::spec() {
+  return coupling::concurrent_spec(dpd_stage_params());
+}
 
 void ConcurrentStage::run(StageContext& ctx) {
   const MPI_Comm inter = ctx.peer("mpm_driver");

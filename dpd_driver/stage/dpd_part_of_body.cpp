@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <yaml-cpp/yaml.h>
-
 #include "kernels/periodic_wrap.hpp"
 
 namespace pbms::dpd {
@@ -14,12 +12,9 @@ namespace {
 using coupling::ConcurrentParams;
 using coupling::Solver;
 
-// id, x, v, mass, group bits: what mpm_driver gets of each of its points.
-constexpr std::size_t kRowWidth = 9;
-
 struct SplitBody {
   DpdParticles dpd;
-  std::vector<double> mpm_rows;
+  std::vector<coupling::HandedPoint> mpm;
 };
 
 SplitBody split_body(const DpdParticles& all, const ConcurrentParams& cp) {
@@ -27,9 +22,7 @@ SplitBody split_body(const DpdParticles& all, const ConcurrentParams& cp) {
   s.dpd.mass_per_type = all.mass_per_type;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (cp.solver_at(all.x[i]) == Solver::kMpm) {
-      s.mpm_rows.insert(s.mpm_rows.end(), {static_cast<double>(all.id[i]), all.x[i][0], all.x[i][1],
-                                           all.x[i][2], all.v[i][0], all.v[i][1], all.v[i][2],
-                                           all.mass(i), static_cast<double>(all.group_mask[i])});
+      s.mpm.push_back({all.id[i], all.x[i], all.v[i], all.mass(i), all.group_mask[i]});
       continue;
     }
     s.dpd.add(all.id[i], all.type[i], all.x[i], all.v[i]);
@@ -63,9 +56,7 @@ grid::NodeBox nodes_around(const std::vector<Vec3>& x, const grid::RegularGrid& 
 // the plan folds images onto their owners.
 grid::NodeBox interface_band(const SplitBody& body, const ConcurrentParams& cp, double reach) {
   std::vector<Vec3> mpm;
-  for (std::size_t r = 0; r < body.mpm_rows.size(); r += kRowWidth) {
-    mpm.push_back({body.mpm_rows[r + 1], body.mpm_rows[r + 2], body.mpm_rows[r + 3]});
-  }
+  for (const auto& p : body.mpm) mpm.push_back(p.x);
   const double margin = cp.band_margin + reach;
   grid::NodeBox band =
       nodes_around(body.dpd.x, cp.grid, margin).intersected(nodes_around(mpm, cp.grid, margin));
@@ -76,19 +67,6 @@ grid::NodeBox interface_band(const SplitBody& body, const ConcurrentParams& cp, 
     }
   }
   return band;
-}
-
-std::string header_yaml(const std::vector<std::string>& group_names, const grid::NodeBox& band,
-                        double reach, double skin) {
-  YAML::Node h;
-  h["groups"] = group_names;
-  h["band_lo"] = std::vector<int>(band.lo.begin(), band.lo.end());
-  h["band_hi"] = std::vector<int>(band.hi.begin(), band.hi.end());
-  h["reach"] = reach;
-  h["skin"] = skin;
-  YAML::Emitter out;
-  out << YAML::Flow << h;
-  return out.c_str();
 }
 
 DpdGridSettings grid_settings(const ConcurrentParams& cp, const DpdModel& model) {
@@ -129,9 +107,9 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
   reach_ = std::max(model_.pair->cutoff(), model_.settings.friction.cutoff) + model_.settings.skin;
   band_ = interface_band(body, cp_, reach_);
   dpd_count_ = static_cast<double>(body.dpd.size());
-  mpm_count_ = static_cast<double>(body.mpm_rows.size()) / static_cast<double>(kRowWidth);
-  handover_ = {header_yaml(model_.group_names, band_, reach_, model_.settings.skin),
-               std::move(body.mpm_rows)};
+  mpm_count_ = static_cast<double>(body.mpm.size());
+  handover_ = {model_.group_names,   band_.lo,           band_.hi, reach_,
+               model_.settings.skin, std::move(body.mpm)};
   engine_ = std::make_unique<DpdEngine>(comm, model_.box, std::move(model_.pair), model_.settings,
                                         std::move(body.dpd));
   engine_->set_prescribed_groups(model_.prescribed_mask);

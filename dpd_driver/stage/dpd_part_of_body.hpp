@@ -33,10 +33,9 @@ class DpdPartOfBody {
                 std::uint64_t seed, const std::string& stage);
 
   [[nodiscard]] const coupling::ConcurrentParams& params() const { return cp_; }
-  // What the MPM part takes over (coupling::hand_over): its points as rows
-  // of id, x, v, mass and group bits, and a header with the group names,
-  // the interface band, the partners' reach and the list skin.
-  [[nodiscard]] const coupling::Handover& handover() const { return handover_; }
+  // What the MPM part takes over (coupling::hand_over): its points, the
+  // group names, the interface band, the partners' reach and the list skin.
+  [[nodiscard]] const coupling::BodyHandover& handover() const { return handover_; }
   [[nodiscard]] const grid::NodeBox& band() const { return band_; }
   // Partners within this distance (pair cutoff plus skin) are exchanged.
   [[nodiscard]] double reach() const { return reach_; }
@@ -63,7 +62,7 @@ class DpdPartOfBody {
 
  private:
   coupling::ConcurrentParams cp_;
-  coupling::Handover handover_;
+  coupling::BodyHandover handover_;
   grid::NodeBox band_;
   double reach_ = 0.0;
   DpdModel model_;  // its particles and pair style moved into the engine

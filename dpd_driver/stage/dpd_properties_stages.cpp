@@ -160,8 +160,8 @@ void DpdElasticStage::run(StageContext& ctx) {
       // One state for a fit's judge: the block means, unrounded (a column
       // travels as binary doubles), which elastic_constants_from_states
       // combines with the other three.
-      const std::vector<CauchyStress> blocks =
-          strain_state_stress(*c.pair, c.spec, c.thermal, strain_state_from_name(state));
+      const std::vector<analysis::CauchyStress> blocks =
+          strain_state_stress(*c.pair, c.spec, c.thermal, analysis::strain_state_from_name(state));
       static constexpr std::array<const char*, 6> kComponents{"xx", "yy", "zz", "xy", "xz", "yz"};
       for (std::size_t k = 0; k < kComponents.size(); ++k) {
         std::vector<double> column(blocks.size());
@@ -172,7 +172,7 @@ void DpdElasticStage::run(StageContext& ctx) {
       r.add_scalar("lattice_constant", a, "Å");
       return;
     }
-    const ElasticConstants e = elastic_constants(*c.pair, c.spec, c.thermal);
+    const analysis::ElasticConstants e = elastic_constants(*c.pair, c.spec, c.thermal);
     const double rho = fcc_density(a, c.spec.mass);
     r.add_scalar("c11", e.c11, "GPa");
     r.add_scalar("c12", e.c12, "GPa");
@@ -180,14 +180,14 @@ void DpdElasticStage::run(StageContext& ctx) {
     r.add_scalar("c11_error", e.c11_error, "GPa");
     r.add_scalar("c12_error", e.c12_error, "GPa");
     r.add_scalar("c44_error", e.c44_error, "GPa");
-    r.add_scalar("youngs_modulus_100", e.youngs_100(), "GPa");
-    r.add_scalar("poisson_ratio_100", e.c12 / (e.c11 + e.c12), "1");
-    r.add_scalar("zener_ratio", 2.0 * e.c44 / (e.c11 - e.c12), "1");
+    r.add_scalar("youngs_modulus_100", e.youngs_modulus_100(), "GPa");
+    r.add_scalar("poisson_ratio_100", e.poisson_ratio_100(), "1");
+    r.add_scalar("zener_ratio", e.zener_ratio(), "1");
     r.add_scalar("bulk_modulus", e.bulk_modulus(), "GPa");
     r.add_scalar("lattice_constant", a, "Å");
     r.add_scalar("density", rho, "kg/m^3");
     r.add_scalar("longitudinal_speed", std::sqrt(e.c11 * 1e9 / rho), "m/s");
-    r.add_scalar("bar_speed", std::sqrt(e.youngs_100() * 1e9 / rho), "m/s");
+    r.add_scalar("bar_speed", std::sqrt(e.youngs_modulus_100() * 1e9 / rho), "m/s");
     r.add_scalar("pressure", e.pressure, "GPa");
   });
 }

@@ -5,15 +5,11 @@
 
 namespace pbms::mpm {
 
-// The solver's records are what the link sums.
-static_assert(mpm::MpmSolver::kHeldStride == coupling::kHeldLanes);
-static_assert(mpm::sums::kHeldAxes == coupling::lanes::kHeldAxes);
-
 ConcurrentMpmSide::ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin)
     : engine_(engine), dt_(dt), skin_(partner_skin) {}
 
 bool ConcurrentMpmSide::follow_points() {
-  const MaterialPoints& p = engine_.points();
+  const grid::MaterialPoints& p = engine_.points();
   if (p.id != ids_) {
     ids_ = p.id;
     last_x_ = unwrapped_ = p.x;
@@ -96,7 +92,7 @@ void ConcurrentMpmSide::finish_step() {
 }
 
 coupling::ContinuumSide::Points ConcurrentMpmSide::partner_points() const {
-  const MaterialPoints& p = engine_.points();
+  const grid::MaterialPoints& p = engine_.points();
   return {p.id, unwrapped_, p.v, p.mass};
 }
 

@@ -40,12 +40,12 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   MpmEngine& engine_;
   double dt_;
   double skin_;
-  std::vector<Vec3> reactions_;
+  std::vector<grid::Vec3> reactions_;
   coupling::HeldNodeSwap holds_;
-  std::vector<std::int64_t> ids_;         // the points as last followed
-  std::vector<Vec3> last_x_, unwrapped_;  // wrapped as stored; continuous
-  std::vector<Vec3> chosen_at_;           // unwrapped_ when partners were chosen
-  bool changed_ = true;                   // points changed rank since then
+  std::vector<std::int64_t> ids_;               // the points as last followed
+  std::vector<grid::Vec3> last_x_, unwrapped_;  // wrapped as stored; continuous
+  std::vector<grid::Vec3> chosen_at_;           // unwrapped_ when partners were chosen
+  bool changed_ = true;                         // points changed rank since then
 };
 
 }  // namespace pbms::mpm

@@ -43,13 +43,13 @@ MpmEngine::MpmEngine(MPI_Comm comm, MpmModel model, MaterialSet materials)
   for (const double m : model_.points.mass) min_mass = std::min(min_mass, m);
   // The small-mass floor must be the same on every rank.
   model_.options.reference_point_mass = allreduce(comm_, min_mass, MPI_MIN);
-  solver_ = std::make_unique<MpmSolver>(patch(),
-                                        grid::ShapeFunctionRegistry::create(model_.shape_function),
-                                        std::move(materials.models), model_.options);
+  solver_ = std::make_unique<grid::MpmSolver>(
+      patch(), grid::ShapeFunctionRegistry::create(model_.shape_function),
+      std::move(materials.models), model_.options);
 }
 
-GridPatch MpmEngine::patch() {
-  GridPatch p{model_.grid, partition_.nodes_of(rank_), model_.periodic, {}};
+grid::GridPatch MpmEngine::patch() {
+  grid::GridPatch p{model_.grid, partition_.nodes_of(rank_), model_.periodic, {}};
   if (!halo_.empty()) {
     p.sum_shared = [this](double* data, int components, int stride) {
       halo_.sum(data, components, stride);
@@ -61,13 +61,13 @@ GridPatch MpmEngine::patch() {
 // Keeps the points this rank's cells hold, in id order, so that output and
 // sums do not depend on the order erase() leaves behind.
 void MpmEngine::keep_own_points() {
-  MaterialPoints& src = model_.points;
+  grid::MaterialPoints& src = model_.points;
   std::vector<size_t> own;
   for (size_t i = 0; i < src.size(); ++i) {
     if (partition_.owner_of(src.x[i]) == rank_) own.push_back(i);
   }
   std::sort(own.begin(), own.end(), [&](size_t a, size_t b) { return src.id[a] < src.id[b]; });
-  MaterialPoints kept;
+  grid::MaterialPoints kept;
   for (const size_t i : own) {
     kept.add(src.id[i], src.x[i], src.volume0[i], src.state[i], src.material[i], src.groups[i]);
     kept.v.back() = src.v[i];

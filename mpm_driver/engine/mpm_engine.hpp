@@ -13,8 +13,8 @@
 #include <memory>
 
 #include "pbms/grid/grid_partition.hpp"
-#include "pbms/mpi/halo_sum.hpp"
-#include "solver/mpm_solver.hpp"
+#include "pbms/grid/halo_sum.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 #include "stage/mpm_model.hpp"
 
 namespace pbms::mpm {
@@ -47,13 +47,13 @@ class MpmEngine {
   // The largest stable time step over every rank's points (CFL bound).
   [[nodiscard]] double stable_time_step() const;
 
-  [[nodiscard]] MaterialPoints& points() { return model_.points; }
-  [[nodiscard]] const MaterialPoints& points() const { return model_.points; }
+  [[nodiscard]] grid::MaterialPoints& points() { return model_.points; }
+  [[nodiscard]] const grid::MaterialPoints& points() const { return model_.points; }
   [[nodiscard]] const MpmModel& model() const { return model_; }
   // The loads a coupling scheme adds to (point forces from another program).
-  [[nodiscard]] BoundaryConditions& boundary_conditions() { return model_.bc; }
-  [[nodiscard]] MpmSolver& solver() { return *solver_; }
-  [[nodiscard]] const MpmSolver& solver() const { return *solver_; }
+  [[nodiscard]] grid::BoundaryConditions& boundary_conditions() { return model_.bc; }
+  [[nodiscard]] grid::MpmSolver& solver() { return *solver_; }
+  [[nodiscard]] const grid::MpmSolver& solver() const { return *solver_; }
   [[nodiscard]] const grid::GridPartition& partition() const { return partition_; }
   // The nodes this rank writes (each node of the grid on one rank only).
   [[nodiscard]] grid::NodeBox owned_nodes() const { return partition_.owned_nodes_of(rank_); }
@@ -65,7 +65,7 @@ class MpmEngine {
 
  private:
   void keep_own_points();
-  [[nodiscard]] GridPatch patch();
+  [[nodiscard]] grid::GridPatch patch();
 
   MPI_Comm comm_;
   int rank_ = 0;
@@ -75,7 +75,7 @@ class MpmEngine {
   std::int64_t steps_ = 0;
   grid::GridPartition partition_;
   mpi::HaloSum halo_;
-  std::unique_ptr<MpmSolver> solver_;
+  std::unique_ptr<grid::MpmSolver> solver_;
 };
 
 }  // namespace pbms::mpm

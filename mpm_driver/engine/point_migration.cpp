@@ -12,7 +12,7 @@ namespace {
 // groups and work. Integers travel as doubles; ids below 2^53 are exact.
 constexpr size_t kPacked = 1 + 3 + 3 + 1 + 1 + 9 + 6 + 3 + 1 + 1 + 1;
 
-void pack(const MaterialPoints& pts, size_t p, std::vector<double>& out) {
+void pack(const grid::MaterialPoints& pts, size_t p, std::vector<double>& out) {
   out.push_back(static_cast<double>(pts.id[p]));
   out.insert(out.end(), pts.x[p].begin(), pts.x[p].end());
   out.insert(out.end(), pts.v[p].begin(), pts.v[p].end());
@@ -29,8 +29,8 @@ void pack(const MaterialPoints& pts, size_t p, std::vector<double>& out) {
   out.push_back(pts.work[p]);
 }
 
-void unpack(const double* d, MaterialPoints& pts) {
-  MaterialPointState s;
+void unpack(const double* d, grid::MaterialPoints& pts) {
+  grid::MaterialPointState s;
   std::copy(d + 18, d + 24, s.stress.voigt.begin());
   s.density = d[24];
   s.plastic_strain = d[25];
@@ -45,7 +45,8 @@ void unpack(const double* d, MaterialPoints& pts) {
 
 }  // namespace
 
-size_t migrate_points(MPI_Comm comm, const grid::GridPartition& partition, MaterialPoints& points) {
+size_t migrate_points(MPI_Comm comm, const grid::GridPartition& partition,
+                      grid::MaterialPoints& points) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);

@@ -10,15 +10,14 @@
 #include <algorithm>
 
 #include "isotropic_elasticity.hpp"
-#include "symmetric_tensor.hpp"
+#include "pbms/analysis/cubic_moduli.hpp"
+#include "pbms/grid/symmetric_tensor.hpp"
 
 namespace pbms::mpm {
 
-struct CubicElasticity {
-  double c11 = 0.0;
-  double c12 = 0.0;
-  double c44 = 0.0;
-
+// The constants and their moduli (bulk, E<100>, nu<100>, stability) are
+// analysis::CubicModuli's; this adds the stress they give.
+struct CubicElasticity : analysis::CubicModuli {
   // The crystal whose uniaxial [100] pull has Young's modulus e and Poisson
   // ratio nu, with anisotropy zener_ratio = 2 C44 / (C11 - C12): C11 and C12
   // are then isotropy's lambda + 2 mu and lambda, and C44 = zener_ratio mu.
@@ -26,19 +25,8 @@ struct CubicElasticity {
   static CubicElasticity from_100(double e, double nu, double zener_ratio) {
     const IsotropicElasticity iso =
         IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(e, nu);
-    return {iso.p_wave_modulus(), iso.lambda, zener_ratio * iso.shear_modulus};
+    return {{iso.p_wave_modulus(), iso.lambda, zener_ratio * iso.shear_modulus}};
   }
-
-  // Positive definite exactly when all three hold.
-  [[nodiscard]] bool stable() const { return c44 > 0.0 && c11 > c12 && c11 + 2.0 * c12 > 0.0; }
-
-  [[nodiscard]] double bulk_modulus() const { return (c11 + 2.0 * c12) / 3.0; }
-
-  // Uniaxial stress along a cube axis.
-  [[nodiscard]] double youngs_modulus_100() const {
-    return (c11 - c12) * (c11 + 2.0 * c12) / (c11 + c12);
-  }
-  [[nodiscard]] double poisson_ratio_100() const { return c12 / (c11 + c12); }
 
   // The stiffest longitudinal wave of a cubic crystal runs along <100> or
   // <111> (whichever has the larger modulus); the time step must resolve it.
@@ -47,7 +35,7 @@ struct CubicElasticity {
   }
 
   // C : strain, with tensor shear components (sigma_xy = 2 C44 eps_xy).
-  [[nodiscard]] SymmetricTensor stress_for(const SymmetricTensor& e) const {
+  [[nodiscard]] grid::SymmetricTensor stress_for(const grid::SymmetricTensor& e) const {
     const double t = c12 * e.trace();
     const double d = c11 - c12;
     return {{t + d * e[0], t + d * e[1], t + d * e[2], 2.0 * c44 * e[3], 2.0 * c44 * e[4],
@@ -57,9 +45,9 @@ struct CubicElasticity {
   // 1/2 stress : C^-1 : stress. The normal part inverts
   // [c11 c12 c12; ...] through its eigenvalues c11 + 2 c12 (hydrostatic)
   // and c11 - c12 (the two deviatoric normal modes).
-  [[nodiscard]] double strain_energy_density(const SymmetricTensor& s) const {
+  [[nodiscard]] double strain_energy_density(const grid::SymmetricTensor& s) const {
     const double mean = s.trace() / 3.0;
-    const SymmetricTensor dev = deviator(s);
+    const grid::SymmetricTensor dev = deviator(s);
     const double normal = 3.0 * mean * mean / (c11 + 2.0 * c12) +
                           (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) / (c11 - c12);
     const double shear = (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]) / c44;

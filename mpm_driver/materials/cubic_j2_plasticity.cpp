@@ -38,7 +38,7 @@ CubicJ2Plasticity::CubicJ2Plasticity(CubicElasticity elasticity, double yield_st
   }
 }
 
-std::unique_ptr<Material> CubicJ2Plasticity::create(const MaterialParameters& params) {
+std::unique_ptr<grid::Material> CubicJ2Plasticity::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   CubicElasticity c;
   c.c11 = reader.required("c11", kModulusRange);
@@ -50,9 +50,9 @@ std::unique_ptr<Material> CubicJ2Plasticity::create(const MaterialParameters& pa
   return std::make_unique<CubicJ2Plasticity>(c, sy, h);
 }
 
-void CubicJ2Plasticity::update(const Mat3& velocity_gradient, double dt,
-                               MaterialPointState& state) const {
-  const SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
+void CubicJ2Plasticity::update(const grid::Mat3& velocity_gradient, double dt,
+                               grid::MaterialPointState& state) const {
+  const grid::SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
   state.stress = rotated(state.stress, hughes_winget_rotation(velocity_gradient, dt)) +
                  elasticity_.stress_for(strain_increment);
   if (von_mises_stress(state.stress) > flow_stress(state.plastic_strain)) {
@@ -65,15 +65,15 @@ void CubicJ2Plasticity::update(const Mat3& velocity_gradient, double dt,
 // plastic strain grows by the multiplier itself), the multiplier that zeroes
 // the linearised f is f / (n : C : n + H). C : n is deviatoric for a cubic
 // C, so the pressure stays elastic, as plastic flow is isochoric.
-void CubicJ2Plasticity::return_to_yield_surface(SymmetricTensor& stress,
+void CubicJ2Plasticity::return_to_yield_surface(grid::SymmetricTensor& stress,
                                                 double& plastic_strain) const {
   for (int pass = 0; pass < kMaxReturnIterations; ++pass) {
-    const SymmetricTensor s = deviator(stress);
+    const grid::SymmetricTensor s = deviator(stress);
     const double q = std::sqrt(1.5 * double_contraction(s, s));
     const double f = q - flow_stress(plastic_strain);
     if (f <= kReturnTolerance * flow_stress(plastic_strain)) return;
-    const SymmetricTensor n = (1.5 / q) * s;
-    const SymmetricTensor cn = elasticity_.stress_for(n);
+    const grid::SymmetricTensor n = (1.5 / q) * s;
+    const grid::SymmetricTensor cn = elasticity_.stress_for(n);
     const double multiplier = f / (double_contraction(n, cn) + hardening_.hardening_modulus);
     stress = stress + (-multiplier) * cn;
     plastic_strain += multiplier;
@@ -82,15 +82,15 @@ void CubicJ2Plasticity::return_to_yield_surface(SymmetricTensor& stress,
                           style_, kMaxReturnIterations));
 }
 
-double CubicJ2Plasticity::wave_speed(const MaterialPointState& state) const {
+double CubicJ2Plasticity::wave_speed(const grid::MaterialPointState& state) const {
   return std::sqrt(elasticity_.max_longitudinal_modulus() / state.density);
 }
 
-double CubicJ2Plasticity::stored_energy_density(const MaterialPointState& state) const {
+double CubicJ2Plasticity::stored_energy_density(const grid::MaterialPointState& state) const {
   return elasticity_.strain_energy_density(state.stress);
 }
 
-double CubicJ2Plasticity::dissipated_energy_density(const MaterialPointState& state) const {
+double CubicJ2Plasticity::dissipated_energy_density(const grid::MaterialPointState& state) const {
   return hardening_.dissipated_energy_density(state.plastic_strain);
 }
 

@@ -14,12 +14,12 @@
 
 #include "cubic_elasticity.hpp"
 #include "linear_hardening.hpp"
-#include "material.hpp"
 #include "material_parameters.hpp"
+#include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
 
-class CubicJ2Plasticity final : public Material {
+class CubicJ2Plasticity final : public grid::Material {
  public:
   static constexpr std::string_view kStyle = "cubic_j2_plasticity";
 
@@ -32,14 +32,16 @@ class CubicJ2Plasticity final : public Material {
 
   // Parameters: c11, c12, c44, yield_stress, hardening_modulus (optional,
   // default 0: perfectly plastic).
-  static std::unique_ptr<Material> create(const MaterialParameters& params);
+  static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
 
   [[nodiscard]] std::string_view style() const override { return style_; }
-  void update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const override;
+  void update(const grid::Mat3& velocity_gradient, double dt,
+              grid::MaterialPointState& state) const override;
   // The fastest elastic longitudinal wave (<100> or <111>).
-  [[nodiscard]] double wave_speed(const MaterialPointState& state) const override;
-  [[nodiscard]] double stored_energy_density(const MaterialPointState& state) const override;
-  [[nodiscard]] double dissipated_energy_density(const MaterialPointState& state) const override;
+  [[nodiscard]] double wave_speed(const grid::MaterialPointState& state) const override;
+  [[nodiscard]] double stored_energy_density(const grid::MaterialPointState& state) const override;
+  [[nodiscard]] double dissipated_energy_density(
+      const grid::MaterialPointState& state) const override;
 
   [[nodiscard]] double flow_stress(double plastic_strain) const {
     return hardening_.flow_stress(plastic_strain);
@@ -48,7 +50,7 @@ class CubicJ2Plasticity final : public Material {
 
  private:
   // Moves a trial stress outside the yield surface back onto it.
-  void return_to_yield_surface(SymmetricTensor& stress, double& plastic_strain) const;
+  void return_to_yield_surface(grid::SymmetricTensor& stress, double& plastic_strain) const;
 
   CubicElasticity elasticity_;
   LinearHardening hardening_;

@@ -25,17 +25,18 @@ IdealGas::IdealGas(double gamma) : gamma_(gamma) {
   check_parameter(kStyle, "gamma", gamma, kGammaRange);
 }
 
-std::unique_ptr<Material> IdealGas::create(const MaterialParameters& params) {
+std::unique_ptr<grid::Material> IdealGas::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   const double gamma = reader.optional("gamma", kDefaultGamma, kGammaRange);
   reader.reject_unknown();
   return std::make_unique<IdealGas>(gamma);
 }
 
-void IdealGas::update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const {
+void IdealGas::update(const grid::Mat3& velocity_gradient, double dt,
+                      grid::MaterialPointState& state) const {
   const double density_end = state.density;
   const double density_start =
-      density_end * (Mat3::Identity() + dt * velocity_gradient).determinant();
+      density_end * (grid::Mat3::Identity() + dt * velocity_gradient).determinant();
   const double dv = 1.0 / density_end - 1.0 / density_start;
 
   // The seed gives only the equation of state (eq. 6.1); the energy balance
@@ -48,20 +49,20 @@ void IdealGas::update(const Mat3& velocity_gradient, double dt, MaterialPointSta
       (e_start - 0.5 * p_start * dv) / (1.0 + 0.5 * (gamma_ - 1.0) * density_end * dv);
 
   state.internal_energy = e_end;
-  state.stress = SymmetricTensor::isotropic(-pressure(density_end, e_end));
+  state.stress = grid::SymmetricTensor::isotropic(-pressure(density_end, e_end));
 }
 
-double IdealGas::wave_speed(const MaterialPointState& state) const {
+double IdealGas::wave_speed(const grid::MaterialPointState& state) const {
   // gamma P / rho = gamma (gamma - 1) e: independent of density.
   return std::sqrt(std::max(0.0, gamma_ * (gamma_ - 1.0) * state.internal_energy));
 }
 
-double IdealGas::stored_energy_density(const MaterialPointState& state) const {
+double IdealGas::stored_energy_density(const grid::MaterialPointState& state) const {
   return state.density * state.internal_energy;
 }
 
-MaterialPointState IdealGas::initial_state(double density, double pressure) const {
-  MaterialPointState state = Material::initial_state(density, pressure);
+grid::MaterialPointState IdealGas::initial_state(double density, double pressure) const {
+  grid::MaterialPointState state = grid::Material::initial_state(density, pressure);
   if (!(pressure >= 0.0)) {
     std::ostringstream msg;
     msg << kStyle << ": initial pressure " << pressure

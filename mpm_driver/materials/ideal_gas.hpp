@@ -7,12 +7,12 @@
 #include <memory>
 #include <string_view>
 
-#include "material.hpp"
 #include "material_parameters.hpp"
+#include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
 
-class IdealGas final : public Material {
+class IdealGas final : public grid::Material {
  public:
   static constexpr std::string_view kStyle = "ideal_gas";
   static constexpr double kDefaultGamma = 1.4;  // diatomic; the seed's value
@@ -21,7 +21,7 @@ class IdealGas final : public Material {
   explicit IdealGas(double gamma = kDefaultGamma);
 
   // Parameters: gamma (optional, default 1.4), the ratio of specific heats.
-  static std::unique_ptr<Material> create(const MaterialParameters& params);
+  static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
 
@@ -31,14 +31,16 @@ class IdealGas final : public Material {
   // solver's own volume change exactly and is second order in the step.
   // Shear (tr D = 0) does no work. Needs det(I + L dt) > 0 and compression
   // per step well below a factor (gamma + 1) / (gamma - 1).
-  void update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const override;
+  void update(const grid::Mat3& velocity_gradient, double dt,
+              grid::MaterialPointState& state) const override;
 
   // sqrt(gamma P / rho); zero for a gas with no internal energy.
-  [[nodiscard]] double wave_speed(const MaterialPointState& state) const override;
+  [[nodiscard]] double wave_speed(const grid::MaterialPointState& state) const override;
   // rho e, the internal energy per unit volume.
-  [[nodiscard]] double stored_energy_density(const MaterialPointState& state) const override;
+  [[nodiscard]] double stored_energy_density(const grid::MaterialPointState& state) const override;
   // Sets e so that the gas holds the given pressure (>= 0) at the given density.
-  [[nodiscard]] MaterialPointState initial_state(double density, double pressure) const override;
+  [[nodiscard]] grid::MaterialPointState initial_state(double density,
+                                                       double pressure) const override;
 
   [[nodiscard]] double pressure(double density, double specific_internal_energy) const {
     return (gamma_ - 1.0) * density * specific_internal_energy;

@@ -2,7 +2,7 @@
 // elasto-plastic material so that both mean the same thing by (E, nu).
 #pragma once
 
-#include "symmetric_tensor.hpp"
+#include "pbms/grid/symmetric_tensor.hpp"
 
 namespace pbms::mpm {
 
@@ -22,7 +22,7 @@ struct IsotropicElasticity {
   [[nodiscard]] double p_wave_modulus() const { return lambda + 2.0 * shear_modulus; }
 
   // C : strain, for a strain or a strain increment.
-  [[nodiscard]] SymmetricTensor stress_for(const SymmetricTensor& strain) const {
+  [[nodiscard]] grid::SymmetricTensor stress_for(const grid::SymmetricTensor& strain) const {
     const double volumetric = lambda * strain.trace();
     const double two_mu = 2.0 * shear_modulus;
     return {{volumetric + two_mu * strain[0], volumetric + two_mu * strain[1],
@@ -32,9 +32,9 @@ struct IsotropicElasticity {
 
   // 1/2 stress : C^-1 : stress, split into volumetric and deviatoric parts so
   // that it also holds after plastic flow has changed the deviator.
-  [[nodiscard]] double strain_energy_density(const SymmetricTensor& stress) const {
+  [[nodiscard]] double strain_energy_density(const grid::SymmetricTensor& stress) const {
     const double pressure = -stress.trace() / 3.0;
-    const SymmetricTensor s = deviator(stress);
+    const grid::SymmetricTensor s = deviator(stress);
     return pressure * pressure / (2.0 * bulk_modulus()) +
            double_contraction(s, s) / (4.0 * shear_modulus);
   }

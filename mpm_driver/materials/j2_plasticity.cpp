@@ -29,7 +29,7 @@ J2Plasticity::J2Plasticity(double youngs_modulus, double poisson_ratio, double y
       IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(youngs_modulus, poisson_ratio);
 }
 
-std::unique_ptr<Material> J2Plasticity::create(const MaterialParameters& params) {
+std::unique_ptr<grid::Material> J2Plasticity::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   const double e = reader.required("youngs_modulus", kYoungsModulusRange);
   const double nu = reader.required("poisson_ratio", kPoissonRatioRange);
@@ -46,14 +46,14 @@ std::unique_ptr<Material> J2Plasticity::create(const MaterialParameters& params)
   return std::make_unique<J2Plasticity>(e, nu, sy, h);
 }
 
-void J2Plasticity::update(const Mat3& velocity_gradient, double dt,
-                          MaterialPointState& state) const {
-  const SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
-  const SymmetricTensor trial =
+void J2Plasticity::update(const grid::Mat3& velocity_gradient, double dt,
+                          grid::MaterialPointState& state) const {
+  const grid::SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
+  const grid::SymmetricTensor trial =
       rotated(state.stress, hughes_winget_rotation(velocity_gradient, dt)) +
       elasticity_.stress_for(strain_increment);
 
-  const SymmetricTensor s_trial = deviator(trial);
+  const grid::SymmetricTensor s_trial = deviator(trial);
   const double q_trial = std::sqrt(1.5 * double_contraction(s_trial, s_trial));
   const double overstress = q_trial - flow_stress(state.plastic_strain);
   if (overstress <= 0.0) {
@@ -67,19 +67,19 @@ void J2Plasticity::update(const Mat3& velocity_gradient, double dt,
   const double dgamma = overstress / (3.0 * mu + hardening_.hardening_modulus);
   const double shrink = 1.0 - 3.0 * mu * dgamma / q_trial;
   const double mean = trial.trace() / 3.0;
-  state.stress = SymmetricTensor::isotropic(mean) + shrink * s_trial;
+  state.stress = grid::SymmetricTensor::isotropic(mean) + shrink * s_trial;
   state.plastic_strain += dgamma;
 }
 
-double J2Plasticity::wave_speed(const MaterialPointState& state) const {
+double J2Plasticity::wave_speed(const grid::MaterialPointState& state) const {
   return std::sqrt(elasticity_.p_wave_modulus() / state.density);
 }
 
-double J2Plasticity::stored_energy_density(const MaterialPointState& state) const {
+double J2Plasticity::stored_energy_density(const grid::MaterialPointState& state) const {
   return elasticity_.strain_energy_density(state.stress);
 }
 
-double J2Plasticity::dissipated_energy_density(const MaterialPointState& state) const {
+double J2Plasticity::dissipated_energy_density(const grid::MaterialPointState& state) const {
   return hardening_.dissipated_energy_density(state.plastic_strain);
 }
 

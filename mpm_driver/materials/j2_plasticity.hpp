@@ -9,12 +9,12 @@
 
 #include "isotropic_elasticity.hpp"
 #include "linear_hardening.hpp"
-#include "material.hpp"
 #include "material_parameters.hpp"
+#include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
 
-class J2Plasticity final : public Material {
+class J2Plasticity final : public grid::Material {
  public:
   static constexpr std::string_view kStyle = "j2_plasticity";
 
@@ -28,15 +28,17 @@ class J2Plasticity final : public Material {
   // (optional, default 1: isotropic). A zener_ratio other than 1 makes a
   // cubic crystal with cube axes along x, y, z whose [100] pull has that E
   // and nu (CubicElasticity::from_100), run by CubicJ2Plasticity.
-  static std::unique_ptr<Material> create(const MaterialParameters& params);
+  static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
-  void update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const override;
+  void update(const grid::Mat3& velocity_gradient, double dt,
+              grid::MaterialPointState& state) const override;
   // The elastic longitudinal speed: the plastic wave is slower, so this bounds both.
-  [[nodiscard]] double wave_speed(const MaterialPointState& state) const override;
-  [[nodiscard]] double stored_energy_density(const MaterialPointState& state) const override;
+  [[nodiscard]] double wave_speed(const grid::MaterialPointState& state) const override;
+  [[nodiscard]] double stored_energy_density(const grid::MaterialPointState& state) const override;
   // Plastic work, integral of flow_stress d(eps_p), per unit volume.
-  [[nodiscard]] double dissipated_energy_density(const MaterialPointState& state) const override;
+  [[nodiscard]] double dissipated_energy_density(
+      const grid::MaterialPointState& state) const override;
 
   [[nodiscard]] double flow_stress(double plastic_strain) const {
     return hardening_.flow_stress(plastic_strain);

@@ -9,21 +9,21 @@
 // O(dt) per unit angle.
 #pragma once
 
-#include "symmetric_tensor.hpp"
+#include "pbms/grid/symmetric_tensor.hpp"
 
 namespace pbms::mpm {
 
 // D = sym(L), the rate of deformation.
-inline SymmetricTensor rate_of_deformation(const Mat3& velocity_gradient) {
-  return SymmetricTensor::from_matrix(velocity_gradient);
+inline grid::SymmetricTensor rate_of_deformation(const grid::Mat3& velocity_gradient) {
+  return grid::SymmetricTensor::from_matrix(velocity_gradient);
 }
 
 // Q = (I - A)^-1 (I + A) with A = dt/2 skew(L). For a skew A with axial
 // vector a this closes to I + 2 (A + A^2) / (1 + |a|^2), and |a|^2 = |A|_F^2 / 2.
 // Written out over the three independent entries of A: this runs once per
 // point and step.
-inline Mat3 hughes_winget_rotation(const Mat3& velocity_gradient, double dt) {
-  const Mat3& l = velocity_gradient;
+inline grid::Mat3 hughes_winget_rotation(const grid::Mat3& velocity_gradient, double dt) {
+  const grid::Mat3& l = velocity_gradient;
   const double c = 0.25 * dt;
   const double a01 = c * (l(0, 1) - l(1, 0));
   const double a02 = c * (l(0, 2) - l(2, 0));
@@ -33,7 +33,7 @@ inline Mat3 hughes_winget_rotation(const Mat3& velocity_gradient, double dt) {
   // A^2 is symmetric: (A^2)_ij = sum_k A_ik A_kj with A_ji = -A_ij.
   const double q00 = -(s01 + s02), q11 = -(s01 + s12), q22 = -(s02 + s12);
   const double q01 = -a02 * a12, q02 = a01 * a12, q12 = -a01 * a02;
-  Mat3 q;
+  grid::Mat3 q;
   q << 1.0 + scale * q00, scale * (a01 + q01), scale * (a02 + q02),  //
       scale * (q01 - a01), 1.0 + scale * q11, scale * (a12 + q12),   //
       scale * (q02 - a02), scale * (q12 - a12), 1.0 + scale * q22;
@@ -41,7 +41,7 @@ inline Mat3 hughes_winget_rotation(const Mat3& velocity_gradient, double dt) {
 }
 
 // Q t Q^T, computing the six independent entries only.
-inline SymmetricTensor rotated(const SymmetricTensor& t, const Mat3& rotation) {
+inline grid::SymmetricTensor rotated(const grid::SymmetricTensor& t, const grid::Mat3& rotation) {
   const auto& v = t.voigt;
   const double tm[3][3] = {{v[0], v[5], v[4]}, {v[5], v[1], v[3]}, {v[4], v[3], v[2]}};
   double m[3][3];  // Q t

@@ -21,7 +21,7 @@ LinearElastic::LinearElastic(double youngs_modulus, double poisson_ratio) {
       IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(youngs_modulus, poisson_ratio);
 }
 
-std::unique_ptr<Material> LinearElastic::create(const MaterialParameters& params) {
+std::unique_ptr<grid::Material> LinearElastic::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   const double e = reader.required("youngs_modulus", kYoungsModulusRange);
   const double nu = reader.required("poisson_ratio", kPoissonRatioRange);
@@ -32,36 +32,36 @@ std::unique_ptr<Material> LinearElastic::create(const MaterialParameters& params
 namespace {
 
 [[gnu::always_inline]] inline void update_one(const IsotropicElasticity& elasticity,
-                                              const Mat3& velocity_gradient, double dt,
-                                              MaterialPointState& state) {
-  const SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
+                                              const grid::Mat3& velocity_gradient, double dt,
+                                              grid::MaterialPointState& state) {
+  const grid::SymmetricTensor strain_increment = dt * rate_of_deformation(velocity_gradient);
   state.stress = rotated(state.stress, hughes_winget_rotation(velocity_gradient, dt)) +
                  elasticity.stress_for(strain_increment);
 }
 
 }  // namespace
 
-void LinearElastic::update(const Mat3& velocity_gradient, double dt,
-                           MaterialPointState& state) const {
+void LinearElastic::update(const grid::Mat3& velocity_gradient, double dt,
+                           grid::MaterialPointState& state) const {
   update_one(elasticity_, velocity_gradient, dt, state);
 }
 
-void LinearElastic::update_block(MaterialBlock& block, std::size_t begin, std::size_t end,
+void LinearElastic::update_block(grid::MaterialBlock& block, std::size_t begin, std::size_t end,
                                  double dt) const {
   const IsotropicElasticity elasticity = elasticity_;
   for (std::size_t i = begin; i < end; ++i) {
-    MaterialPointState s;
+    grid::MaterialPointState s;
     for (int c = 0; c < 6; ++c) s.stress[c] = block.stress[c][i];
     update_one(elasticity, block.velocity_gradient(i), dt, s);
     for (int c = 0; c < 6; ++c) block.stress[c][i] = s.stress[c];
   }
 }
 
-double LinearElastic::wave_speed(const MaterialPointState& state) const {
+double LinearElastic::wave_speed(const grid::MaterialPointState& state) const {
   return std::sqrt(elasticity_.p_wave_modulus() / state.density);
 }
 
-double LinearElastic::stored_energy_density(const MaterialPointState& state) const {
+double LinearElastic::stored_energy_density(const grid::MaterialPointState& state) const {
   return elasticity_.strain_energy_density(state.stress);
 }
 

@@ -7,12 +7,12 @@
 #include <string_view>
 
 #include "isotropic_elasticity.hpp"
-#include "material.hpp"
 #include "material_parameters.hpp"
+#include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
 
-class LinearElastic final : public Material {
+class LinearElastic final : public grid::Material {
  public:
   static constexpr std::string_view kStyle = "linear_elastic";
 
@@ -20,15 +20,16 @@ class LinearElastic final : public Material {
   LinearElastic(double youngs_modulus, double poisson_ratio);
 
   // Parameters: youngs_modulus, poisson_ratio.
-  static std::unique_ptr<Material> create(const MaterialParameters& params);
+  static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
-  void update(const Mat3& velocity_gradient, double dt, MaterialPointState& state) const override;
-  void update_block(MaterialBlock& block, std::size_t begin, std::size_t end,
+  void update(const grid::Mat3& velocity_gradient, double dt,
+              grid::MaterialPointState& state) const override;
+  void update_block(grid::MaterialBlock& block, std::size_t begin, std::size_t end,
                     double dt) const override;
   // sqrt((lambda + 2 mu) / rho).
-  [[nodiscard]] double wave_speed(const MaterialPointState& state) const override;
-  [[nodiscard]] double stored_energy_density(const MaterialPointState& state) const override;
+  [[nodiscard]] double wave_speed(const grid::MaterialPointState& state) const override;
+  [[nodiscard]] double stored_energy_density(const grid::MaterialPointState& state) const override;
 
   [[nodiscard]] const IsotropicElasticity& elasticity() const { return elasticity_; }
 

@@ -34,8 +34,8 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
-std::unique_ptr<Material> MaterialRegistry::create(std::string_view style,
-                                                   const MaterialParameters& params) {
+std::unique_ptr<grid::Material> MaterialRegistry::create(std::string_view style,
+                                                         const MaterialParameters& params) {
   const auto& table = factories();
   const auto it = table.find(style);
   if (it == table.end()) {

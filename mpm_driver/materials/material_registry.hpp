@@ -9,19 +9,20 @@
 #include <string_view>
 #include <vector>
 
-#include "material.hpp"
 #include "material_parameters.hpp"
+#include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
 
-using MaterialFactory = std::function<std::unique_ptr<Material>(const MaterialParameters&)>;
+using MaterialFactory = std::function<std::unique_ptr<grid::Material>(const MaterialParameters&)>;
 
 class MaterialRegistry {
  public:
   // Built-in styles: linear_elastic, j2_plasticity, ideal_gas. Throws
   // pbms::Error for an unknown style (listing the known ones) and for missing,
   // unknown or out-of-range parameters (naming the parameter and its range).
-  static std::unique_ptr<Material> create(std::string_view style, const MaterialParameters& params);
+  static std::unique_ptr<grid::Material> create(std::string_view style,
+                                                const MaterialParameters& params);
 
   // Adds a style from outside this directory. Throws pbms::Error if the name
   // is taken. Not thread-safe: register before any concurrent create().

@@ -33,7 +33,7 @@ BarWaveAnalysis::BarWaveAnalysis(const YAML::Node& wf, const MpmEngine& engine, 
   bar_.loaded_end = wf["loaded_end"].as<double>();
   bar_.fixed_end = wf["fixed_end"].as<double>();
   bar_.traction = wf["traction"].as<double>();
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   const auto& units = engine.model().options.units;
   double c = 0.0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -52,7 +52,7 @@ BarWaveAnalysis::BarWaveAnalysis(const YAML::Node& wf, const MpmEngine& engine, 
 }
 
 std::vector<double> BarWaveAnalysis::profile_rows(const MpmEngine& engine) const {
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   std::vector<double> rows;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (!pts.in_group(i, mask_)) continue;
@@ -64,7 +64,7 @@ std::vector<double> BarWaveAnalysis::profile_rows(const MpmEngine& engine) const
 
 void BarWaveAnalysis::sample(const MpmEngine& engine, double t) {
   if (!(t > 0.1 * bar_.transit_time() && t < 0.9 * bar_.transit_time())) return;
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   std::vector<double> x, sxx;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (!pts.in_group(i, mask_)) continue;

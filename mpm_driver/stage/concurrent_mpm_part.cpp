@@ -18,7 +18,7 @@
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/for_each_node.hpp"
-#include "pbms/io/grid_field_writer.hpp"
+#include "pbms/grid/grid_field_writer.hpp"
 #include "pbms/io/h5md_writer.hpp"
 #include "pbms/units.hpp"
 
@@ -28,7 +28,7 @@ namespace {
 // The nodes this rank writes: mass and velocity as the MPM part holds them
 // after a step, both parts' sums on the interface band's nodes.
 void write_grid(GridFieldWriter& out, const MpmEngine& engine, std::int64_t step, double t) {
-  const MpmSolver& solver = engine.solver();
+  const grid::MpmSolver& solver = engine.solver();
   const grid::NodeBox owned = engine.owned_nodes();
   const auto& local = solver.patch().nodes;
   std::vector<double> mass, vel;
@@ -44,7 +44,7 @@ void write_grid(GridFieldWriter& out, const MpmEngine& engine, std::int64_t step
 
 // The MPM part's points, one H5MD frame, each rank writing its own.
 void write_points(H5mdWriter& out, const MpmEngine& engine, std::int64_t step, double t) {
-  const MaterialPoints& p = engine.points();
+  const grid::MaterialPoints& p = engine.points();
   std::vector<double> x, v;
   for (std::size_t i = 0; i < p.size(); ++i) {
     x.insert(x.end(), p.x[i].begin(), p.x[i].end());
@@ -57,7 +57,7 @@ void write_points(H5mdWriter& out, const MpmEngine& engine, std::int64_t step, d
       p.id, x, v);
 }
 
-coupling::ParticleView view_of(const MaterialPoints& p) {
+coupling::ParticleView view_of(const grid::MaterialPoints& p) {
   return {p.size(), p.id, p.x, p.v, p.mass, p.groups};
 }
 
@@ -96,7 +96,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"});
   auto add_to_ledger = [&](std::int64_t n) {
     auto row = ledger.motion_of(static_cast<double>(n) * cp.time_step, view_of(engine.points()));
-    const EnergySummary energy = engine.solver().energy(engine.points());
+    const grid::EnergySummary energy = engine.solver().energy(engine.points());
     row.energies = {energy.stored, energy.dissipated};
     ledger.add(std::move(row));
   };
@@ -114,7 +114,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
         (void)coupling::swap_scalar(inter, ctx.comm(), f);
       }
       // Σ σ V along the axis, bar Å^3 to eV.
-      const MaterialPoints& q = engine.points();
+      const grid::MaterialPoints& q = engine.points();
       double sv = 0.0;
       for (std::size_t i = 0; i < q.size(); ++i) {
         sv += q.volume(i) * q.state[i].stress.voigt[static_cast<std::size_t>(cp.tension->axis)];

@@ -8,15 +8,15 @@
 
 #include "materials/material_registry.hpp"
 #include "pbms/error.hpp"
-#include "pbms/geometry/cell_fill.hpp"
 #include "pbms/geometry/region_yaml.hpp"
+#include "pbms/grid/cell_fill.hpp"
 #include "pbms/units.hpp"
 #include "pbms/velocity_ramp.hpp"
 
 namespace pbms::mpm {
 namespace {
 
-Vec3 vec3(const YAML::Node& n) {
+grid::Vec3 vec3(const YAML::Node& n) {
   const auto v = n.as<std::vector<double>>();
   return {v.at(0), v.at(1), v.at(2)};
 }
@@ -81,14 +81,15 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
   m.periodic = axes_of(g["periodic"]);
   m.shape_function = params["shape_function"].as<std::string>();
 
-  SolverOptions& o = m.options;
-  o.stress_update = params["stress_update"].as<std::string>() == "first" ? StressUpdate::kFirst
-                                                                         : StressUpdate::kLast;
+  grid::SolverOptions& o = m.options;
+  o.stress_update = params["stress_update"].as<std::string>() == "first"
+                        ? grid::StressUpdate::kFirst
+                        : grid::StressUpdate::kLast;
   o.flip = params["flip"].as<double>();
   o.ddmp = params["gradient"].as<std::string>() == "ddmp";
   o.ddmp_face_vanishing = params["ddmp_blend"].as<std::string>() == "face_vanishing";
   o.small_mass_fraction = params["small_mass_fraction"].as<double>();
-  o.units = m.metal_units ? UnitSystem::metal() : UnitSystem{};
+  o.units = m.metal_units ? grid::UnitSystem::metal() : grid::UnitSystem{};
 
   // Groups first: bodies may name the groups their points join.
   std::vector<std::unique_ptr<geometry::Region>> group_regions;
@@ -121,7 +122,7 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
     if (it == materials.names.end())
       throw Error(fmt::format("body '{}': unknown material '{}'", name, mat_name));
     const int mat = static_cast<int>(it - materials.names.begin());
-    const Material& model = *materials.models[static_cast<size_t>(mat)];
+    const grid::Material& model = *materials.models[static_cast<size_t>(mat)];
     const auto region = region_from_yaml(b["region"]);
     auto ppc = b["points_per_cell"].as<std::vector<int>>();
     if (ppc.size() == 1) ppc = {ppc[0], ppc[0], ppc[0]};
@@ -130,19 +131,19 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       throw Error(fmt::format("body '{}': its region holds no material point of the grid", name));
     }
     const double pressure = b["pressure"].as<double>();
-    const MaterialPointState s0 =
+    const grid::MaterialPointState s0 =
         model.initial_state(materials.density[static_cast<size_t>(mat)], pressure);
-    const Vec3 v0 = vec3(b["velocity"]);
+    const grid::Vec3 v0 = vec3(b["velocity"]);
     const YAML::Node mode = b["axial_mode"];
     const uint32_t body_bit = 1u << (region_groups + body_index);
     for (size_t k = 0; k < filled.positions.size(); ++k) {
-      const Vec3& x = filled.positions[k];
+      const grid::Vec3& x = filled.positions[k];
       uint32_t bits = body_bit;
       for (size_t gi = 0; gi < region_groups; ++gi) {
         if (group_regions[gi]->contains(x)) bits |= 1u << gi;
       }
       m.points.add(id++, x, filled.volumes[k], s0, mat, bits);
-      Vec3 v = v0;
+      grid::Vec3 v = v0;
       if (mode) {
         // First axial mode of a bar fixed at `fixed_end` and free at
         // fixed_end + length: v = A sin(pi s / 2L).
@@ -167,7 +168,7 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
     if (kind == "nodes") {
       // Every node whose position lies in the region.
       const auto region = region_from_yaml(c["region"]);
-      NodeConstraint nc;
+      grid::NodeConstraint nc;
       nc.axis = axes_of(c["axes"]);
       if (c["velocity"]) nc.velocity = vec3(c["velocity"]);
       std::array<int, 3> lo{}, hi{};
@@ -190,7 +191,7 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       nc.nodes = {lo, hi};
       m.bc.nodes.push_back(nc);
     } else if (kind == "group_velocity") {
-      PointVelocity pv;
+      grid::PointVelocity pv;
       const auto group = c["group"].as<std::string>();
       pv.group_mask = m.group_mask(group);
       pv.axis = axes_of(c["axes"]);
@@ -209,12 +210,12 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
       m.bc.point_velocities.push_back(pv);
       m.point_velocity_groups.push_back(group);
     } else if (kind == "group_force") {
-      PointLoad load;
+      grid::PointLoad load;
       const auto group = c["group"].as<std::string>();
       load.group_mask = m.group_mask(group);
       const auto count = m.group_sizes[static_cast<size_t>(std::countr_zero(load.group_mask))];
       if (count == 0) throw Error(fmt::format("group '{}' has no material point to load", group));
-      const Vec3 total = vec3(c["force"]);
+      const grid::Vec3 total = vec3(c["force"]);
       for (size_t a = 0; a < 3; ++a)
         load.force_per_point[a] = total[a] / static_cast<double>(count);
       m.bc.loads.push_back(load);
@@ -224,7 +225,7 @@ MpmModel build_model(const YAML::Node& params, MaterialSet& materials) {
   return m;
 }
 
-void ramp_point_velocities(const MpmModel& model, BoundaryConditions& bc, std::int64_t step,
+void ramp_point_velocities(const MpmModel& model, grid::BoundaryConditions& bc, std::int64_t step,
                            double dt) {
   for (std::size_t k = 0; k < model.point_velocity_ramps.size(); ++k) {
     const auto& r = model.point_velocity_ramps[k];

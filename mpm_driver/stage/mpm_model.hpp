@@ -13,13 +13,13 @@
 
 #include "pbms/geometry/region.hpp"
 #include "pbms/geometry/region_yaml.hpp"
-#include "solver/mpm_solver.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 
 namespace pbms::mpm {
 
 // The materials: a stage's `materials:` entries in solver units.
 struct MaterialSet {
-  std::vector<std::unique_ptr<Material>> models;
+  std::vector<std::unique_ptr<grid::Material>> models;
   std::vector<std::string> names;
   std::vector<double> density;  // solver units
 };
@@ -29,18 +29,18 @@ struct MpmModel {
   std::array<bool, 3> periodic{false, false, false};
   bool metal_units = true;
   std::string shape_function = "linear";
-  SolverOptions options;
-  MaterialPoints points;
+  grid::SolverOptions options;
+  grid::MaterialPoints points;
   std::vector<std::string> group_names;  // bit g of MaterialPoints::groups
   std::vector<int64_t> group_sizes;      // points per group, all ranks
-  BoundaryConditions bc;
+  grid::BoundaryConditions bc;
   // For each bc.point_velocities entry, the group it holds (for probes).
   std::vector<std::string> point_velocity_groups;
   // For each bc.point_velocities entry, its full velocity and the time it
   // is reached over from rest (0: at once; velocity_ramp.hpp).
   struct Ramp {
     double time = 0.0;
-    Vec3 velocity{0.0, 0.0, 0.0};
+    grid::Vec3 velocity{0.0, 0.0, 0.0};
   };
   std::vector<Ramp> point_velocity_ramps;
 
@@ -49,7 +49,7 @@ struct MpmModel {
 
 // Sets each ramped point velocity of `bc` to its value for step `step`
 // (before that step); entries past their ramp are left alone.
-void ramp_point_velocities(const MpmModel& model, BoundaryConditions& bc, std::int64_t step,
+void ramp_point_velocities(const MpmModel& model, grid::BoundaryConditions& bc, std::int64_t step,
                            double dt);
 
 using geometry::region_from_yaml;

@@ -33,7 +33,7 @@ void MpmOutput::write(const MpmEngine& engine, std::int64_t step, double t) {
 }
 
 void MpmOutput::write_particles(const MpmEngine& engine, std::int64_t step, double t) {
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   std::vector<double> x, v;
   x.reserve(3 * pts.size());
   v.reserve(3 * pts.size());
@@ -45,7 +45,7 @@ void MpmOutput::write_particles(const MpmEngine& engine, std::int64_t step, doub
 }
 
 void MpmOutput::write_grid(const MpmEngine& engine, std::int64_t step, double t) {
-  const MpmSolver& solver = engine.solver();
+  const grid::MpmSolver& solver = engine.solver();
   const grid::NodeBox owned = engine.owned_nodes();
   const auto& local = solver.patch().nodes;
   std::vector<double> mass, vel;

@@ -10,7 +10,7 @@
 
 #include "engine/mpm_engine.hpp"
 #include "mpm_run_params.hpp"
-#include "pbms/io/grid_field_writer.hpp"
+#include "pbms/grid/grid_field_writer.hpp"
 #include "pbms/io/h5md_writer.hpp"
 
 namespace pbms::mpm {

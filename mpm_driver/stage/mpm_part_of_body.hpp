@@ -1,5 +1,5 @@
 // The MPM part of a concurrent stage's body on the ranks of `comm`: the
-// points the DPD part handed over (coupling::Handover), as linear elastic
+// points the DPD part handed over (coupling::BodyHandover), as linear elastic
 // material points on the shared grid, and their coupling side. mpm_driver's
 // concurrent_mpm_part builds it on its ranks; the monolithic reference of
 // the split test (tests/tools/concurrent_monolithic.cpp) builds it on one
@@ -24,8 +24,8 @@ namespace pbms::mpm {
 
 class MpmPartOfBody {
  public:
-  MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp, const coupling::Handover& body,
-                const YAML::Node& material);
+  MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp,
+                const coupling::BodyHandover& body, const YAML::Node& material);
 
   [[nodiscard]] const std::vector<std::string>& group_names() const { return groups_; }
   [[nodiscard]] const grid::NodeBox& band() const { return band_; }

@@ -72,8 +72,8 @@ MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal
   }
 }
 
-void MpmProbes::local(const MaterialPoints& pts, const MpmSolver& solver,
-                      const BoundaryConditions& /*bc*/, std::vector<double>& sums,
+void MpmProbes::local(const grid::MaterialPoints& pts, const grid::MpmSolver& solver,
+                      const grid::BoundaryConditions& /*bc*/, std::vector<double>& sums,
                       std::vector<double>& maxima) const {
   sums.assign(n_sums_, 0.0);
   maxima.assign(n_max_, -std::numeric_limits<double>::infinity());

@@ -9,7 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "mpm_model.hpp"
-#include "solver/mpm_solver.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 
 namespace pbms::mpm {
 
@@ -24,8 +24,9 @@ class MpmProbes {
   [[nodiscard]] const std::vector<std::string>& units() const { return units_; }
 
   // Local partial sums and maxima of this rank's points.
-  void local(const MaterialPoints& points, const MpmSolver& solver, const BoundaryConditions& bc,
-             std::vector<double>& sums, std::vector<double>& maxima) const;
+  void local(const grid::MaterialPoints& points, const grid::MpmSolver& solver,
+             const grid::BoundaryConditions& bc, std::vector<double>& sums,
+             std::vector<double>& maxima) const;
   // Column values from the reduced sums and maxima.
   [[nodiscard]] std::vector<double> values(const std::vector<double>& sums,
                                            const std::vector<double>& maxima) const;

@@ -18,7 +18,7 @@ namespace {
 // `axis` on any rank: the point spacing, so that a rod of n points spans
 // n spacings, as a DPD rod of n planes spans n plane spacings.
 double point_spacing(const MpmEngine& engine, std::uint32_t mask, std::size_t axis) {
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   std::vector<double> c;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (pts.in_group(i, mask)) c.push_back(pts.x[i][axis]);
@@ -60,7 +60,7 @@ RodTensionAnalysis::RodTensionAnalysis(const YAML::Node& t, const MpmEngine& eng
 }
 
 void RodTensionAnalysis::find_gauge(const MpmEngine& engine) {
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   std::vector<double> mine;  // id, axial coordinate
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (pts.in_group(i, mask_) && test_.gauge->half(pts.x[i][axis_]) >= 0) {
@@ -76,7 +76,7 @@ void RodTensionAnalysis::find_gauge(const MpmEngine& engine) {
 // The volume mean of the gauge points' axial Cauchy stress, and the
 // distance of its halves' centroids (analysis::GaugeSection).
 void RodTensionAnalysis::sample_gauge(const MpmEngine& engine) {
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   const std::size_t a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
   analysis::GaugeSums g;
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -95,7 +95,7 @@ void RodTensionAnalysis::sample_gauge(const MpmEngine& engine) {
 }
 
 std::vector<double> RodTensionAnalysis::measure(const MpmEngine& engine) const {
-  const MaterialPoints& pts = engine.points();
+  const grid::MaterialPoints& pts = engine.points();
   const double inf = std::numeric_limits<double>::infinity();
   // Minima of x and of -x in one reduction.
   std::array<double, 6> lo{inf, inf, inf, inf, inf, inf};

@@ -104,13 +104,13 @@ inline MpmPart mpm_part(MPI_Comm comm, const ConcurrentBar& bar) {
   mpm::MpmModel model;
   model.grid = bar.grid();
   model.periodic = kPeriodic;
-  model.options.units = mpm::UnitSystem::metal();
+  model.options.units = grid::UnitSystem::metal();
   model.options.small_mass_fraction = 0.0;  // as the DPD side's grid step
   model.options.ddmp = model.options.ddmp_face_vanishing = bar.ddmp;
   const double volume = kLattice * kLattice * kLattice / 4.0;
   for (std::size_t i = 0; i < c.particles.size(); ++i) {
     if (bar.is_dpd(c.particles.x[i])) continue;
-    mpm::MaterialPointState s;
+    grid::MaterialPointState s;
     s.density = kMass / volume;
     model.points.add(c.particles.id[i], c.particles.x[i], volume, s, 0);
     model.points.mass.back() = kMass;

@@ -76,7 +76,7 @@ Final run(MPI_Comm comm, const Case& c) {
   DpdGridSettings grid_settings;
   grid_settings.cell_size = kLattice / 2.0;
   if (c.flyer && c.grid) {
-    const mpm::Vec3 velocity{0.0, 0.0, -1.0};  // Å/ps
+    const grid::Vec3 velocity{0.0, 0.0, -1.0};  // Å/ps
     DpdParticles& p = crystal.particles;
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.x[i][2] < crystal.box.hi[2] - kLattice - 1e-6) continue;

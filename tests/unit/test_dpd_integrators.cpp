@@ -24,6 +24,7 @@
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/kinetic_sums.hpp"
 #include "kernels/maxwell_boltzmann_velocities.hpp"
+#include "pbms/analysis/block_average.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/units.hpp"
@@ -180,7 +181,7 @@ ThermostatRun run_thermostat(DpdScheme scheme, int cells, double equilibration_p
   // 40 % less than the scatter between seeds).
   const int blocks = std::max(2, static_cast<int>(production_ps / 5.0));
   ThermostatRun run{pbms::analysis::mean(temperature),
-                    pbms::analysis::block_standard_error(temperature, blocks),
+                    pbms::analysis::block_average(temperature, blocks).error,
                     kolmogorov_smirnov_p_value(kolmogorov_smirnov_statistic(z), z.size())};
   std::printf("%s, %zu particles, %.0f + %.0f ps: <T> = %.2f +- %.2f K, KS p = %.3f\n",
               scheme == DpdScheme::kShardlow ? "Shardlow" : "velocity Verlet",

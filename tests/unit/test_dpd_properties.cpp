@@ -30,6 +30,7 @@
 #include "properties/uniaxial_strain.hpp"
 
 using namespace pbms::dpd;
+using namespace pbms::analysis;
 
 namespace {
 
@@ -131,7 +132,7 @@ void print(const char* label, const ElasticConstants& c, double seconds) {
   std::printf(
       "%s: C11 = %.2f +- %.2f, C12 = %.2f +- %.2f, C44 = %.2f +- %.2f, E<100> = %.2f +- %.2f, "
       "B = %.2f +- %.2f, P = %.4f +- %.4f GPa (%.2f s)\n",
-      label, c.c11, c.c11_error, c.c12, c.c12_error, c.c44, c.c44_error, c.youngs_100(),
+      label, c.c11, c.c11_error, c.c12, c.c12_error, c.c44, c.c44_error, c.youngs_modulus_100(),
       c.youngs_100_error, c.bulk_modulus(), c.bulk_modulus_error, c.pressure, c.pressure_error,
       seconds);
 }
@@ -147,7 +148,7 @@ TEST(DpdProperties, StaticMorseConstantsAreTheLatticeSums) {
   EXPECT_NEAR(c.c11 / 185.80, 1.0, 1e-3);
   EXPECT_NEAR(c.c12 / 114.10, 1.0, 1e-3);
   EXPECT_NEAR(c.c44 / 114.10, 1.0, 1e-3);
-  EXPECT_NEAR(c.youngs_100() / 98.97, 1.0, 1e-3);
+  EXPECT_NEAR(c.youngs_modulus_100() / 98.97, 1.0, 1e-3);
   EXPECT_NEAR(c.bulk_modulus() / 138.0, 1.0, 1e-3);
   // The Cauchy relation of a pair potential at zero pressure.
   EXPECT_NEAR(c.c12 / c.c44, 1.0, 1e-6);
@@ -252,13 +253,13 @@ TEST(DpdProperties, MorseAt298KIsSlightlySofterThanStatic) {
   EXPECT_LT(c.c11_error, 0.003 * c.c11);
   EXPECT_LT(c.c12_error, 0.003 * c.c12);
   EXPECT_LT(c.c44_error, 0.003 * c.c44);
-  EXPECT_LT(c.youngs_100_error, 0.005 * c.youngs_100());
+  EXPECT_LT(c.youngs_100_error, 0.005 * c.youngs_modulus_100());
   // The mesoparticle has 3 of the 24 degrees of freedom of its 8 atoms, so
   // its thermal softening is about an eighth of copper's (C11 ~5 % from 0 to
   // 298 K): of order 1 %, and not more than a few.
   for (const auto& [hot_value, cold_value] :
        {std::pair{c.c11, cold.c11}, std::pair{c.c44, cold.c44},
-        std::pair{c.youngs_100(), cold.youngs_100()},
+        std::pair{c.youngs_modulus_100(), cold.youngs_modulus_100()},
         std::pair{c.bulk_modulus(), cold.bulk_modulus()}}) {
     EXPECT_LT(hot_value, cold_value * 0.998);
     EXPECT_GT(hot_value, cold_value * 0.96);
@@ -336,7 +337,8 @@ TEST(DpdProperties, StrainStatesSampledApartGiveTheSameConstants) {
   for (const StrainState state : kStrainStates) {
     states[static_cast<std::size_t>(state)] =
         strain_state_stress(*cu_cg_morse(), crystal, hot, state);
-    EXPECT_EQ(states[static_cast<std::size_t>(state)].size(), static_cast<std::size_t>(kBlocks));
+    EXPECT_EQ(states[static_cast<std::size_t>(state)].size(),
+              static_cast<std::size_t>(kStateBlocks));
   }
   const ElasticConstants apart = elastic_constants_from_states(states, elastic_strain(hot, 0.0));
   EXPECT_EQ(apart.c11, whole.c11);
@@ -438,7 +440,7 @@ TEST(DpdProperties, InvalidSettingsAreRefused) {
   EXPECT_THROW(isotherm_point(*morse, crystal, {}, 0.0), pbms::Error);
   ThermalSettings hot = room_temperature();
   EXPECT_THROW(isotherm_point(*morse, {kLattice, 0, 0.0}, hot, 1.0), pbms::Error);
-  hot.sampling_steps = kBlocks - 1;
+  hot.sampling_steps = kStateBlocks - 1;
   EXPECT_THROW(isotherm_point(*morse, crystal, hot, 1.0), pbms::Error);
   hot = room_temperature();
   hot.temperature = -1.0;

@@ -13,13 +13,13 @@
 #include <vector>
 
 #include "pbms/error.hpp"
-#include "pbms/geometry/cell_fill.hpp"
 #include "pbms/geometry/composite_regions.hpp"
 #include "pbms/geometry/lattice_fill.hpp"
 #include "pbms/geometry/orientation.hpp"
 #include "pbms/geometry/particle_groups.hpp"
 #include "pbms/geometry/primitive_regions.hpp"
 #include "pbms/geometry/region_spec.hpp"
+#include "pbms/grid/cell_fill.hpp"
 #include "pbms/grid/regular_grid.hpp"
 
 using namespace pbms::geometry;

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "pbms/error.hpp"
+#include "pbms/grid/grid_field_writer.hpp"
 #include "pbms/grid/regular_grid.hpp"
-#include "pbms/io/grid_field_writer.hpp"
 #include "pbms/io/hdf5.hpp"
 
 using pbms::GridFieldWriter;

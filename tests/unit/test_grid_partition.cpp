@@ -8,7 +8,7 @@
 
 #include "pbms/error.hpp"
 #include "pbms/grid/grid_partition.hpp"
-#include "pbms/mpi/halo_sum.hpp"
+#include "pbms/grid/halo_sum.hpp"
 
 using namespace pbms;
 using namespace pbms::grid;

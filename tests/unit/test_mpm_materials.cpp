@@ -25,6 +25,7 @@
 #include "pbms/error.hpp"
 
 using namespace pbms::mpm;
+using namespace pbms::grid;
 
 namespace {
 

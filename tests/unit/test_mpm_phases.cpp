@@ -9,13 +9,14 @@
 #include <random>
 
 #include "materials/material_registry.hpp"
-#include "materials/stressless_particle.hpp"
 #include "pbms/error.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 #include "pbms/grid/shape_function.hpp"
-#include "solver/mpm_solver.hpp"
+#include "pbms/grid/stressless_particle.hpp"
 
 using namespace pbms;
 using namespace pbms::mpm;
+using namespace pbms::grid;
 
 namespace {
 

@@ -6,12 +6,13 @@
 #include "materials/material_registry.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/grid_partition.hpp"
+#include "pbms/grid/halo_sum.hpp"
+#include "pbms/grid/mpm_solver.hpp"
 #include "pbms/grid/shape_function.hpp"
-#include "pbms/mpi/halo_sum.hpp"
-#include "solver/mpm_solver.hpp"
 
 using namespace pbms;
 using namespace pbms::mpm;
+using namespace pbms::grid;
 
 namespace {
 

@@ -4,7 +4,8 @@
 #include <cstdio>
 #include <random>
 
-#include "md_elastic.hpp"
+#include "pbms/analysis/block_average.hpp"
+#include "pbms/analysis/cubic_moduli.hpp"
 #include "pbms/analysis/equation_of_state.hpp"
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
@@ -80,7 +81,7 @@ TEST(Statistics, BlockErrorMatchesTheScatterOfIndependentReplicas) {
       xi = v;
     }
     replica_means.push_back(mean(x));
-    const double e = block_standard_error(x, kBlocks);
+    const double e = block_average(x, kBlocks).error;
     block_variances.push_back(e * e);
   }
   const double grand = mean(replica_means);
@@ -106,8 +107,8 @@ TEST(Statistics, BlockErrorMatchesTheScatterOfIndependentReplicas) {
 }
 
 TEST(Statistics, BlockErrorNeedsTwoFilledBlocks) {
-  EXPECT_TRUE(std::isnan(block_standard_error({1.0, 2.0, 3.0}, 1)));
-  EXPECT_TRUE(std::isnan(block_standard_error({1.0, 2.0, 3.0}, 10)));
+  EXPECT_TRUE(std::isnan(block_average({1.0, 2.0, 3.0}, 1).error));
+  EXPECT_TRUE(std::isnan(block_average({1.0, 2.0, 3.0}, 10).error));
 }
 
 // The slope's block error against the scatter of the slope over independent
@@ -170,7 +171,7 @@ TEST(Statistics, SlopeBlockErrorMatchesTheScatterOfIndependentReplicas) {
   EXPECT_NEAR(r.ratio, 1.0 - 0.033, 3.0 * r.sigma);
 }
 
-// 39 samples in 10 blocks: block_standard_error keeps 30, and an error
+// 39 samples in 10 blocks: block_average keeps 30, and an error
 // scaled by all 39 reads sqrt(39/30) = 1.14 times too large. White noise,
 // so that neighbouring blocks are independent. With 3 samples a block the
 // blocks - 3 correction for the parabola is approximate (30 samples, none
@@ -186,7 +187,39 @@ TEST(Statistics, SlopeBlockErrorNeedsThreeSamplesPerBlock) {
   EXPECT_TRUE(std::isnan(slope_block_error({0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}, 10)));
 }
 
-TEST(CubicElasticity, CopperRelations) {
-  EXPECT_NEAR(pbms::md::cubic_bulk_modulus(169.9, 122.6), 138.37, 0.01);
-  EXPECT_NEAR(pbms::md::cubic_youngs_modulus_100(169.9, 122.6), 67.13, 0.01);
+// Mishin's EAM copper (METHOD.md §6): B = 138.4 GPa, E<100> about 67 GPa;
+// nu<100> = C12/(C11 + C12) and 2 C44/(C11 - C12) worked by hand.
+TEST(CubicModuli, CopperRelations) {
+  const pbms::analysis::CubicModuli cu{169.9, 122.6, 76.2};
+  EXPECT_NEAR(cu.bulk_modulus(), 138.37, 0.01);
+  EXPECT_NEAR(cu.youngs_modulus_100(), 67.13, 0.01);
+  EXPECT_NEAR(cu.poisson_ratio_100(), 122.6 / 292.5, 1e-15);
+  EXPECT_NEAR(cu.zener_ratio(), 152.4 / 47.3, 1e-14);
+  EXPECT_NEAR(cu.tetragonal_shear_modulus(), 23.65, 1e-13);
+  EXPECT_TRUE(cu.stable());
+  EXPECT_FALSE((pbms::analysis::CubicModuli{100.0, 120.0, 50.0}.stable()));
+}
+
+// Eleven samples in five blocks of two (the eleventh a dropped remainder):
+// block means 1.5, 3.5, ..., 9.5, their mean 5.5, the unbiased variance of
+// the means 40 / 4 = 10 and the standard error sqrt(10 / 5).
+TEST(BlockAverage, MeanAndErrorOfEqualBlocks) {
+  std::vector<double> x;
+  for (int i = 1; i <= 11; ++i) x.push_back(i);
+  const auto b = block_average(x, 5);
+  EXPECT_DOUBLE_EQ(b.mean, 5.5);
+  EXPECT_DOUBLE_EQ(b.error, std::sqrt(2.0));
+}
+
+// Fewer samples than blocks: one sample is a static state (exact, error 0);
+// more than one cannot tell its error (NaN); no samples, no mean.
+TEST(BlockAverage, ShortSeries) {
+  const auto one = block_average({3.0}, 5);
+  EXPECT_EQ(one.mean, 3.0);
+  EXPECT_EQ(one.error, 0.0);
+  const auto three = block_average({1.0, 2.0, 6.0}, 5);
+  EXPECT_EQ(three.mean, 3.0);
+  EXPECT_TRUE(std::isnan(three.error));
+  EXPECT_TRUE(std::isnan(block_average({}, 5).mean));
+  EXPECT_TRUE(block_means({1.0, 2.0}, 5).empty());
 }

@@ -1,4 +1,5 @@
-// Small statistics kernels used by several stages.
+// Small statistics kernels used by several stages: means, line fits and
+// their errors, periods (block averages: block_average.hpp).
 #pragma once
 
 #include <vector>
@@ -6,10 +7,6 @@
 namespace pbms::analysis {
 
 double mean(const std::vector<double>& x);
-
-// Standard error of the mean of a correlated time series, from the scatter
-// of `blocks` block means (Flyvbjerg-Petersen style blocking, one level).
-double block_standard_error(const std::vector<double>& x, int blocks = 10);
 
 struct LineFit {
   double slope = 0.0, intercept = 0.0;
@@ -21,10 +18,9 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
 
 // Standard error of fit_line's slope when the noise in y is correlated in
 // sample order (a stress sampled along a strain ramp): the variance per
-// sample comes from `blocks` block means of the residuals, as in
-// block_standard_error. The residuals are taken about a least-squares
-// parabola, so that a curve's bend is not counted as noise. Needs
-// blocks >= 4 and at least 3 points per block; NaN otherwise.
+// sample comes from `blocks` block means of the residuals (block_average). The residuals are taken
+// about a least-squares parabola, so that a curve's bend is not counted as noise. Needs blocks >= 4
+// and at least 3 points per block; NaN otherwise.
 double slope_block_error(const std::vector<double>& x, const std::vector<double>& y,
                          int blocks = 10);
 

@@ -1,10 +1,12 @@
 // Byte-level encoding of protocol messages: fixed-width integers and IEEE
 // doubles in host order (all programs of a job run one build on one
-// cluster), length-prefixed strings, vectors and maps, and any struct that
+// cluster), length-prefixed strings, vectors and maps, fixed-size arrays
+// element by element, and any struct that
 // lists its members with PBMS_FIELDS. A message type is therefore just a
 // struct; its wire layout is its field list, in order.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -31,6 +33,10 @@ struct IsVector : std::false_type {};
 template <typename T>
 struct IsVector<std::vector<T>> : std::true_type {};
 template <typename T>
+struct IsArray : std::false_type {};
+template <typename T, size_t N>
+struct IsArray<std::array<T, N>> : std::true_type {};
+template <typename T>
 struct IsMap : std::false_type {};
 template <typename K, typename V>
 struct IsMap<std::map<K, V>> : std::true_type {};
@@ -51,6 +57,8 @@ class Encoder {
       } else {
         for (const auto& x : v) put(x);
       }
+    } else if constexpr (IsArray<T>::value) {
+      for (const auto& x : v) put(x);
     } else if constexpr (IsMap<T>::value) {
       put<uint64_t>(v.size());
       for (const auto& [k, x] : v) {
@@ -93,6 +101,8 @@ class Decoder {
         const auto n = length(1);
         for (uint64_t i = 0; i < n; ++i) get(out.emplace_back());
       }
+    } else if constexpr (IsArray<T>::value) {
+      for (auto& x : out) get(x);
     } else if constexpr (IsMap<T>::value) {
       out.clear();
       const auto n = length(1);

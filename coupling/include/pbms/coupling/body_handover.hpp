@@ -1,0 +1,49 @@
+// The one hand-over at the start of a concurrent stage: the program that
+// builds the body (dpd_driver: lattice fill or an earlier stage's final
+// state, which only it holds) gives the other program the points its
+// regions assign to it, with what both must agree on (group names, the
+// interface band, the partners' reach, the list skin). A typed struct on
+// the wire (protocol/wire.hpp), root to root over the intercommunicator,
+// then a broadcast inside the receiving program; once per stage.
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pbms/grid/regular_grid.hpp"
+#include "pbms/protocol/wire.hpp"
+
+namespace pbms::coupling {
+
+// One point of the body that the taking program advances.
+struct HandedPoint {
+  std::int64_t id = 0;
+  std::array<double, 3> x{}, v{};  // Å, Å/ps
+  double mass = 0.0;               // g/mol
+  std::uint32_t groups = 0;        // bit g: group BodyHandover::groups[g]
+  PBMS_FIELDS(id, x, v, mass, groups)
+};
+
+struct BodyHandover {
+  std::vector<std::string> groups;
+  // The interface band: the nodes both programs may deposit on, global
+  // indices, as grid::NodeBox holds them.
+  std::array<int, 3> band_lo{}, band_hi{};
+  double reach = 0.0;  // Å: partners within it are exchanged (pair cutoff plus skin)
+  double skin = 0.0;   // Å: partners are chosen afresh when a side has moved half of it
+  std::vector<HandedPoint> points;
+  PBMS_FIELDS(groups, band_lo, band_hi, reach, skin, points)
+
+  [[nodiscard]] grid::NodeBox band() const { return {band_lo, band_hi}; }
+};
+
+// Every rank of the giving program calls it; rank 0's data is sent.
+void hand_over(MPI_Comm inter, MPI_Comm local, const BodyHandover& body);
+// Every rank of the taking program calls it and gets the same data.
+[[nodiscard]] BodyHandover take_over(MPI_Comm inter, MPI_Comm local);
+
+}  // namespace pbms::coupling
