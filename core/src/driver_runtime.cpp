@@ -293,6 +293,10 @@ YAML::Node StageContext::material(const std::string& name) const {
   return m;
 }
 
+YAML::Node StageContext::material() const {
+  return material(params_["material"].as<std::string>());
+}
+
 MPI_Comm StageContext::comm() const {
   return runtime_.group().get();
 }

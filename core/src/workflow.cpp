@@ -120,249 +120,306 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
       "A PBMS workflow");
 }
 
-LoadResult load_workflow(const std::string& path, const std::vector<DriverDescription>& drivers) {
-  LoadResult result;
-  Validator v(path);
-  YAML::Mark top;
-  top.line = 0;
-  top.column = 0;
+namespace {
 
-  if (!std::filesystem::exists(path)) {
-    result.errors.push_back({path, 0, 0, "", "cannot open the workflow file: it does not exist"});
-    return result;
-  }
-  std::optional<YAML::Node> loaded = load_yaml_source(path, v, "a workflow");
-  if (!loaded) {
-    result.errors = v.errors();
-    return result;
-  }
-  YAML::Node root = *loaded;  // not const: a const lookup of a missing key throws
-  if (!root.IsMap()) {
-    v.error_at(root.Mark().is_null() ? top : root.Mark(), "",
-               "expected a map with keys run, launch, materials, stages");
-    result.errors = v.errors();
+// load_workflow's steps over one file, each reporting through the
+// validator so that every problem is listed at once.
+class WorkflowLoader {
+ public:
+  WorkflowLoader(const std::string& path, const std::vector<DriverDescription>& drivers)
+      : path_(path), drivers_(drivers), v_(path) {}
+
+  LoadResult load() {
+    LoadResult result;
+    if (!read_root(result)) return result;
+    resolved_ = v_.check(workflow_schema(drivers_), root_, "");
+    check_run_directory();
+    collect_stages();
+    check_references();
+    read_potential_files();
+    if (v_.errors().empty() && file_errors_.empty()) run_stage_checks();
+    result.errors = v_.errors();
+    result.errors.insert(result.errors.end(), file_errors_.begin(), file_errors_.end());
+    if (result.errors.empty()) result.workflow = workflow();
     return result;
   }
 
-  const Param schema = workflow_schema(drivers);
-  YAML::Node resolved = v.check(schema, root, "");
+ private:
+  // The file as a YAML map; false (with the errors in `result`) otherwise.
+  bool read_root(LoadResult& result) {
+    if (!std::filesystem::exists(path_)) {
+      result.errors.push_back(
+          {path_, 0, 0, "", "cannot open the workflow file: it does not exist"});
+      return false;
+    }
+    std::optional<YAML::Node> loaded = load_yaml_source(path_, v_, "a workflow");
+    if (!loaded) {
+      result.errors = v_.errors();
+      return false;
+    }
+    root_ = *loaded;
+    if (!root_.IsMap()) {
+      YAML::Mark top;
+      top.line = 0;
+      top.column = 0;
+      v_.error_at(root_.Mark().is_null() ? top : root_.Mark(), "",
+                  "expected a map with keys run, launch, materials, stages");
+      result.errors = v_.errors();
+      return false;
+    }
+    return true;
+  }
 
   // The run directory must be possible: nothing in the way (a file where a
   // directory should be) and a parent it can be created in.
-  const YAML::Node run_out = resolved["run"];
-  if (run_out.IsMap() && run_out["name"] && run_out["output"]) {
+  void check_run_directory() {
+    const YAML::Node run_out = resolved_["run"];
+    if (!run_out.IsMap() || !run_out["name"] || !run_out["output"]) return;
     const std::filesystem::path dir =
         std::filesystem::path(run_out["output"].Scalar()) / run_out["name"].Scalar();
     if (const std::string problem = directory_problem(dir); !problem.empty()) {
-      const YAML::Node at = root["run"]["output"] ? root["run"]["output"] : root["run"];
-      v.error(at, "run.output",
-              fmt::format("the run directory '{}' cannot be created: {}",
-                          clipped(dir.string(), 300), problem));
+      const YAML::Node at = root_["run"]["output"] ? root_["run"]["output"] : root_["run"];
+      v_.error(at, "run.output",
+               fmt::format("the run directory '{}' cannot be created: {}",
+                           clipped(dir.string(), 300), problem));
     }
   }
 
-  // Stage names and kinds.
-  std::vector<std::string> stage_names;
-  std::vector<const StageKindSpec*> stage_specs;
-  const YAML::Node stages = root["stages"];
-  if (stages.IsSequence()) {
-    for (size_t i = 0; i < stages.size(); ++i) {
-      const YAML::Node st = stages[i];
+  // Stage names (each once) and kinds (declared by a driver, not internal).
+  void collect_stages() {
+    stages_ = root_["stages"];
+    if (!stages_.IsSequence()) return;
+    for (size_t i = 0; i < stages_.size(); ++i) {
+      const YAML::Node st = stages_[i];
       const std::string sp = fmt::format("stages[{}]", i);
       std::string name;
-      const StageKindSpec* spec = nullptr;
       if (st.IsMap() && st["name"] && st["name"].IsScalar()) {
         name = st["name"].Scalar();
-        if (std::find(stage_names.begin(), stage_names.end(), name) != stage_names.end()) {
-          v.error(st["name"], sp + ".name", fmt::format("stage name '{}' is used twice", name));
+        if (std::find(stage_names_.begin(), stage_names_.end(), name) != stage_names_.end()) {
+          v_.error(st["name"], sp + ".name", fmt::format("stage name '{}' is used twice", name));
         }
       }
-      if (st.IsMap() && st["kind"] && st["kind"].IsScalar()) {
-        const std::string kind = st["kind"].Scalar();
-        spec = find_kind(drivers, kind);
-        if (!spec) {
-          const auto kinds = all_kinds(drivers);
-          v.error(st["kind"], sp + ".kind",
-                  fmt::format("unknown stage kind '{}': no installed driver declares it "
-                              "(declared: {}){}",
-                              clipped(kind), fmt::join(kinds, ", "), suggest(kind, kinds)));
-        } else if (spec->internal) {
-          v.error(st["kind"], sp + ".kind",
-                  fmt::format("stage kind '{}' is a part of another kind that the coupler starts "
-                              "itself ({}); a workflow cannot name it",
-                              kind, spec->doc));
-          spec = nullptr;
-        }
-      }
-      stage_names.push_back(name);
-      stage_specs.push_back(spec);
+      const StageKindSpec* spec = nullptr;
+      if (st.IsMap() && st["kind"] && st["kind"].IsScalar()) spec = stage_kind(st["kind"], sp);
+      stage_names_.push_back(name);
+      stage_specs_.push_back(spec);
     }
   }
 
-  // Cross references: stage outputs must come from earlier stages; materials
-  // must exist and suit the stage.
-  const YAML::Node materials = root["materials"];
-  const std::map<std::string, int> first_use = first_stage_using(v.references());
-  // The index of stage `name`, which must run before stage `idx` (-1: no
-  // stage); -1 after reporting that it does not.
-  auto earlier_stage = [&](const std::string& name, int idx, const YAML::Mark& m,
-                           const std::string& key_path, std::string_view use) {
-    const auto it = std::find(stage_names.begin(), stage_names.end(), name);
-    if (it == stage_names.end()) {
-      v.error_at(
-          m, key_path,
-          fmt::format("no stage is named '{}'{}", clipped(name), suggest(name, stage_names)));
-      return -1;
+  const StageKindSpec* stage_kind(const YAML::Node& kind_node, const std::string& sp) {
+    const std::string kind = kind_node.Scalar();
+    const StageKindSpec* spec = find_kind(drivers_, kind);
+    if (!spec) {
+      const auto kinds = all_kinds(drivers_);
+      v_.error(kind_node, sp + ".kind",
+               fmt::format("unknown stage kind '{}': no installed driver declares it "
+                           "(declared: {}){}",
+                           clipped(kind), fmt::join(kinds, ", "), suggest(kind, kinds)));
+      return nullptr;
     }
-    const int target_idx = static_cast<int>(it - stage_names.begin());
-    if (idx >= 0 && target_idx >= idx) {
-      v.error_at(m, key_path,
-                 fmt::format("stage '{}' runs {} this one: a stage can only {} stages before it",
-                             name, target_idx == idx ? "as" : "after", use));
-      return -1;
+    if (spec->internal) {
+      v_.error(kind_node, sp + ".kind",
+               fmt::format("stage kind '{}' is a part of another kind that the coupler starts "
+                           "itself ({}); a workflow cannot name it",
+                           kind, spec->doc));
+      return nullptr;
     }
-    return target_idx;
-  };
-  for (const auto& r : v.references()) {
-    YAML::Mark m;
-    m.line = r.line - 1;
-    m.column = r.column - 1;
-    const int idx = stage_index_of(r.key_path, first_use);
-    if (r.type == Reference::Target::kMaterial) {
-      if (!materials.IsMap() || !materials[r.target]) {
-        v.error_at(
-            m, r.key_path,
-            fmt::format("material '{}' is not defined under 'materials'", clipped(r.target)));
-        continue;
+    return spec;
+  }
+
+  // Cross references: stage outputs must come from earlier stages;
+  // materials must exist and suit the stage.
+  void check_references() {
+    const std::map<std::string, int> first_use = first_stage_using(v_.references());
+    for (const auto& r : v_.references()) {
+      YAML::Mark m;
+      m.line = r.line - 1;
+      m.column = r.column - 1;
+      const int idx = stage_index_of(r.key_path, first_use);
+      if (r.type == Reference::Target::kMaterial) {
+        check_material_reference(r, m, idx);
+      } else if (r.type == Reference::Target::kStage) {
+        check_stage_reference(r, m, idx);
+      } else {
+        check_output_reference(r, m, idx);
       }
-      const YAML::Node mk = materials[r.target]["kind"];
-      if (idx >= 0 && stage_specs[idx] && mk && mk.IsScalar()) {
-        const auto& ok = stage_specs[idx]->material_kinds;
-        if (std::find(ok.begin(), ok.end(), mk.Scalar()) == ok.end()) {
-          v.error_at(
-              m, r.key_path,
-              fmt::format("material '{}' is of kind '{}', but stage kind '{}' takes {}", r.target,
-                          mk.Scalar(), stage_specs[idx]->kind, fmt::join(ok, ", ")));
-        }
-      }
-      continue;
     }
-    if (r.type == Reference::Target::kStage) {
-      const int target_idx = earlier_stage(r.target, idx, m, r.key_path, "start from");
-      const StageKindSpec* spec = target_idx >= 0 ? stage_specs[target_idx] : nullptr;
-      if (spec && std::find(r.kinds.begin(), r.kinds.end(), spec->kind) == r.kinds.end()) {
-        v.error_at(m, r.key_path,
-                   fmt::format("stage '{}' is a {} stage; this key takes a stage of kind {}",
-                               r.target, spec->kind, fmt::join(r.kinds, " or ")));
-      }
-      continue;
+  }
+
+  void check_material_reference(const Reference& r, const YAML::Mark& m, int idx) {
+    const YAML::Node materials = root_["materials"];
+    if (!materials.IsMap() || !materials[r.target]) {
+      v_.error_at(m, r.key_path,
+                  fmt::format("material '{}' is not defined under 'materials'", clipped(r.target)));
+      return;
     }
+    const YAML::Node mk = materials[r.target]["kind"];
+    if (idx < 0 || !stage_specs_[idx] || !mk || !mk.IsScalar()) return;
+    const auto& ok = stage_specs_[idx]->material_kinds;
+    if (std::find(ok.begin(), ok.end(), mk.Scalar()) == ok.end()) {
+      v_.error_at(m, r.key_path,
+                  fmt::format("material '{}' is of kind '{}', but stage kind '{}' takes {}",
+                              r.target, mk.Scalar(), stage_specs_[idx]->kind, fmt::join(ok, ", ")));
+    }
+  }
+
+  void check_stage_reference(const Reference& r, const YAML::Mark& m, int idx) {
+    const int target_idx = earlier_stage(r.target, idx, m, r.key_path, "start from");
+    const StageKindSpec* spec = target_idx >= 0 ? stage_specs_[target_idx] : nullptr;
+    if (spec && std::find(r.kinds.begin(), r.kinds.end(), spec->kind) == r.kinds.end()) {
+      v_.error_at(m, r.key_path,
+                  fmt::format("stage '{}' is a {} stage; this key takes a stage of kind {}",
+                              r.target, spec->kind, fmt::join(r.kinds, " or ")));
+    }
+  }
+
+  void check_output_reference(const Reference& r, const YAML::Mark& m, int idx) {
     const auto dot = r.target.find('.');
     if (dot == std::string::npos) {
-      v.error_at(
+      v_.error_at(
           m, r.key_path,
           fmt::format("'{}' is not a stage output: write <stage>.<output>", clipped(r.target)));
-      continue;
+      return;
     }
     const std::string sname = r.target.substr(0, dot);
     const std::string oname = r.target.substr(dot + 1);
     const int target_idx = earlier_stage(sname, idx, m, r.key_path, "use outputs of");
-    if (target_idx < 0) continue;
-    const StageKindSpec* spec = stage_specs[target_idx];
-    if (!spec) continue;
+    if (target_idx < 0) return;
+    const StageKindSpec* spec = stage_specs_[target_idx];
+    if (!spec) return;
     const OutputSpec* out = spec->output(oname);
     if (!out) {
       std::vector<std::string> names;
       for (const auto& o : spec->outputs) names.push_back(o.name);
-      v.error_at(
+      v_.error_at(
           m, r.key_path,
           fmt::format("stage '{}' ({}) has no output '{}' (outputs: {}){}", sname, spec->kind,
                       clipped(oname), fmt::join(names, ", "), suggest(oname, names)));
     } else if (out->shape != r.wants) {
-      v.error_at(m, r.key_path,
-                 fmt::format("output '{}' is {}; this key takes {}", r.target,
-                             shape_phrase(out->shape), shape_phrase(r.wants)));
+      v_.error_at(m, r.key_path,
+                  fmt::format("output '{}' is {}; this key takes {}", r.target,
+                              shape_phrase(out->shape), shape_phrase(r.wants)));
     }
+  }
+
+  // The index of stage `name`, which must run before stage `idx` (-1: no
+  // stage); -1 after reporting that it does not.
+  int earlier_stage(const std::string& name, int idx, const YAML::Mark& m,
+                    const std::string& key_path, std::string_view use) {
+    const auto it = std::find(stage_names_.begin(), stage_names_.end(), name);
+    if (it == stage_names_.end()) {
+      v_.error_at(
+          m, key_path,
+          fmt::format("no stage is named '{}'{}", clipped(name), suggest(name, stage_names_)));
+      return -1;
+    }
+    const int target_idx = static_cast<int>(it - stage_names_.begin());
+    if (idx >= 0 && target_idx >= idx) {
+      v_.error_at(m, key_path,
+                  fmt::format("stage '{}' runs {} this one: a stage can only {} stages before it",
+                              name, target_idx == idx ? "as" : "after", use));
+      return -1;
+    }
+    return target_idx;
   }
 
   // A DPD mesoparticle's potential is inline or in a file of the same
   // format; a file is checked here, with its own line numbers.
-  std::vector<ConfigError> file_errors;
-  if (materials.IsMap()) {
+  void read_potential_files() {
+    const YAML::Node materials = root_["materials"];
+    if (!materials.IsMap()) return;
     for (const auto& entry : materials) {
       const YAML::Node m = entry.second;
       if (!m.IsMap() || !m["kind"] || !m["kind"].IsScalar() ||
           m["kind"].Scalar() != "dpd_mesoparticle") {
         continue;
       }
-      const std::string name = entry.first.as<std::string>();
-      const std::string mp = "materials." + name;
-      if (m["potential"] && m["potential_file"]) {
-        v.error(m["potential_file"], mp + ".potential_file",
-                "give `potential` or `potential_file`, not both");
-        continue;
-      }
-      if (!m["potential"] && !m["potential_file"]) {
-        v.error(m, mp, "a dpd_mesoparticle needs `potential` (inline) or `potential_file`");
-        continue;
-      }
-      if (!m["potential_file"]) continue;
-      const YAML::Node file_node = resolved["materials"][name]["potential_file"];
-      if (!file_node || !file_node.IsScalar()) continue;  // already reported
-      const std::string file = file_node.Scalar();
-      Validator fv(file);
-      const std::optional<YAML::Node> doc = load_yaml_source(file, fv, "a potential file");
-      if (doc) {
-        YAML::Node checked = fv.check(dpd_potential_schema(), *doc, "potential");
-        if (fv.errors().empty()) resolved["materials"][name]["potential"] = checked;
-      }
-      file_errors.insert(file_errors.end(), fv.errors().begin(), fv.errors().end());
+      read_potential_file(entry.first.as<std::string>(), m);
     }
+  }
+
+  void read_potential_file(const std::string& name, const YAML::Node& m) {
+    const std::string mp = "materials." + name;
+    if (m["potential"] && m["potential_file"]) {
+      v_.error(m["potential_file"], mp + ".potential_file",
+               "give `potential` or `potential_file`, not both");
+      return;
+    }
+    if (!m["potential"] && !m["potential_file"]) {
+      v_.error(m, mp, "a dpd_mesoparticle needs `potential` (inline) or `potential_file`");
+      return;
+    }
+    if (!m["potential_file"]) return;
+    const YAML::Node file_node = resolved_["materials"][name]["potential_file"];
+    if (!file_node || !file_node.IsScalar()) return;  // already reported
+    const std::string file = file_node.Scalar();
+    Validator fv(file);
+    const std::optional<YAML::Node> doc = load_yaml_source(file, fv, "a potential file");
+    if (doc) {
+      YAML::Node checked = fv.check(dpd_potential_schema(), *doc, "potential");
+      if (fv.errors().empty()) resolved_["materials"][name]["potential"] = checked;
+    }
+    file_errors_.insert(file_errors_.end(), fv.errors().begin(), fv.errors().end());
   }
 
   // Checks a stage kind declares beside its code, once everything they
   // read is known to be sound.
-  if (v.errors().empty() && file_errors.empty()) {
-    for (size_t i = 0; i < stage_specs.size(); ++i) {
-      if (!stage_specs[i] || !stage_specs[i]->check) continue;
+  void run_stage_checks() {
+    for (size_t i = 0; i < stage_specs_.size(); ++i) {
+      if (!stage_specs_[i] || !stage_specs_[i]->check) continue;
       const std::string sp = fmt::format("stages[{}]", i);
-      stage_specs[i]->check(
-          {v, stages[i], resolved["stages"][i], sp, resolved["materials"], drivers});
+      stage_specs_[i]->check(
+          {v_, stages_[i], resolved_["stages"][i], sp, resolved_["materials"], drivers_});
     }
   }
 
-  result.errors = v.errors();
-  result.errors.insert(result.errors.end(), file_errors.begin(), file_errors.end());
-  if (!result.errors.empty()) return result;
+  Workflow workflow() const {
+    Workflow wf;
+    wf.source_file = path_;
+    wf.resolved = resolved_;
+    wf.run_name = resolved_["run"]["name"].as<std::string>();
+    wf.run_name_line = root_["run"]["name"].Mark().line + 1;
+    wf.run_name_column = root_["run"]["name"].Mark().column + 1;
+    wf.output_dir = resolved_["run"]["output"].as<std::string>();
+    wf.seed = resolved_["run"]["seed"].as<uint64_t>();
+    wf.materials = resolved_["materials"];
+    for (size_t i = 0; i < stage_specs_.size(); ++i) wf.stages.push_back(stage_config(i));
+    for (const auto& prog : wf.programs()) {
+      for (const auto& d : drivers_) {
+        if (d.program == prog) wf.ranks[prog] = resolved_["launch"][d.short_name].as<int>(1);
+      }
+    }
+    return wf;
+  }
 
-  Workflow wf;
-  wf.source_file = path;
-  wf.resolved = resolved;
-  wf.run_name = resolved["run"]["name"].as<std::string>();
-  wf.run_name_line = root["run"]["name"].Mark().line + 1;
-  wf.run_name_column = root["run"]["name"].Mark().column + 1;
-  wf.output_dir = resolved["run"]["output"].as<std::string>();
-  wf.seed = resolved["run"]["seed"].as<uint64_t>();
-  wf.materials = resolved["materials"];
-  for (size_t i = 0; i < stage_specs.size(); ++i) {
+  StageConfig stage_config(size_t i) const {
+    const StageKindSpec& spec = *stage_specs_[i];
     StageConfig sc;
-    sc.name = stage_names[i];
-    sc.kind = stage_specs[i]->kind;
-    sc.program = stage_specs[i]->program;
-    sc.drivers =
-        sc.program == kCouplerProgram ? stage_specs[i]->uses : std::vector<std::string>{sc.program};
-    for (const auto& partner : stage_specs[i]->partners) sc.drivers.push_back(partner.program);
-    sc.params = resolved["stages"][i];
-    sc.line = stages[i].Mark().line + 1;
-    wf.stages.push_back(sc);
+    sc.name = stage_names_[i];
+    sc.kind = spec.kind;
+    sc.program = spec.program;
+    sc.drivers = sc.program == kCouplerProgram ? spec.uses : std::vector<std::string>{sc.program};
+    for (const auto& partner : spec.partners) sc.drivers.push_back(partner.program);
+    sc.params = resolved_["stages"][i];
+    sc.line = stages_[i].Mark().line + 1;
+    return sc;
   }
-  for (const auto& prog : wf.programs()) {
-    for (const auto& d : drivers) {
-      if (d.program == prog) wf.ranks[prog] = resolved["launch"][d.short_name].as<int>(1);
-    }
-  }
-  result.workflow = std::move(wf);
-  return result;
+
+  std::string path_;
+  const std::vector<DriverDescription>& drivers_;
+  Validator v_;
+  YAML::Node root_;  // not const: a const lookup of a missing key throws
+  YAML::Node resolved_;
+  YAML::Node stages_;
+  std::vector<std::string> stage_names_;
+  std::vector<const StageKindSpec*> stage_specs_;
+  std::vector<ConfigError> file_errors_;
+};
+
+}  // namespace
+
+LoadResult load_workflow(const std::string& path, const std::vector<DriverDescription>& drivers) {
+  return WorkflowLoader(path, drivers).load();
 }
 
 std::string apply_rank_override(Workflow& wf, const std::vector<DriverDescription>& drivers,

@@ -64,16 +64,11 @@ std::vector<analysis::CauchyStress> state_stress(const StageResults& r) {
 }  // namespace
 
 YAML::Node DpdJudge::crystal_params(double temperature) const {
-  const JudgeSettings& j = settings_.judge;
   YAML::Node p;
   p["name"] = ctx_.stage().name;
   p["material"] = settings_.material;
   p["temperature"] = temperature;
-  p["cells"] = j.cells;
-  p["gamma"] = j.gamma;
-  p["time_step"] = j.time_step;
-  p["equilibration_steps"] = j.equilibration_steps;
-  p["sampling_steps"] = j.sampling_steps;
+  settings_.judge.sampling.write(p);
   return p;
 }
 

@@ -41,7 +41,7 @@ std::string line_of(const JournalEntry& e) {
   return out.c_str();
 }
 
-JournalEntry entry_of(const YAML::Node& n) {
+JournalEntry entry_from_yaml(const YAML::Node& n) {
   JournalEntry e;
   e.phase = n["phase"].as<int>();
   e.temperature = n["temperature"].as<double>();
@@ -70,7 +70,7 @@ EvaluationJournal::EvaluationJournal(std::filesystem::path file, bool resume)
     std::string line;
     while (std::getline(in, line)) {
       try {
-        entries_.push_back(entry_of(YAML::Load(line)));
+        entries_.push_back(entry_from_yaml(YAML::Load(line)));
       } catch (const YAML::Exception&) {
         break;  // cut short by the kill that ended the earlier run
       }

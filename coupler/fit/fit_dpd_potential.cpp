@@ -118,11 +118,11 @@ class Fit {
   };
 
   void check_cutoff() const {
-    const YAML::Node cutoff = s_.start_potential["cutoff"];
+    const std::optional<double> cutoff = s_.start_cutoff;
     if (!s_.isotherm || !cutoff) return;
     const auto& v = s_.isotherm->volume_per_atom;
     const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-    check_cutoff_between_shells(cutoff.as<double>(), *lo, *hi, s_.atoms_per_particle);
+    check_cutoff_between_shells(*cutoff, *lo, *hi, s_.atoms_per_particle);
   }
 
   int budget() const {
@@ -402,7 +402,7 @@ class Fit {
   void report(size_t best, const std::vector<double>& errors) {
     const Evaluation& e = evaluations_[best];
     auto& r = ctx_.results();
-    const std::string style = s_.start_potential["style"].as<std::string>();
+    const std::string& style = s_.style;
     r.add_scalar("objective", e.objective, "1");
     r.add_scalar("max_residual_trained", objective_.max_trained(e.residuals), "1");
     if (s_.isotherm) {
@@ -457,7 +457,7 @@ class Fit {
     r.add_column(t, "status", "1", status);
     r.add_column(t, "objective", "1", objective);
     r.add_column(t, "wall_s", "s", wall);
-    const std::string style = s_.start_potential["style"].as<std::string>();
+    const std::string& style = s_.style;
     for (size_t k = 0; k < s_.free.size(); ++k) {
       std::vector<double> v;
       for (const auto& e : evaluations_) v.push_back(e.params[k]);

@@ -94,20 +94,9 @@ Param optimizer_param() {
 }
 
 Param judge_param() {
-  return defaulted(Param::map(
-      "judge",
-      {Param::integer("cells", "Crystal edge in lattice constants; 0: the fewest the cutoff allows")
-           .def(0)
-           .at_least(0),
-       Param::integer("equilibration_steps", "DPD steps before sampling, per state")
-           .def(200)
-           .at_least(0),
-       Param::integer("sampling_steps", "DPD steps sampled, per state (as dpd_isotherm)")
-           .def(2000)
-           .at_least(10),
-       Param::real("gamma", Dimension::kNone, "Sampling friction, g/mol/ps").def(1.0e4).above(0),
-       Param::real("time_step", Dimension::kTime, "DPD time step").def(0.01).above(0)},
-      "How dpd_driver judges a candidate (dpd_isotherm and dpd_elastic requests)"));
+  return defaulted(Param::map("judge", config::CrystalSampling::params(2000),
+                              "How dpd_driver samples a candidate's crystal (the keys of "
+                              "dpd_isotherm and dpd_elastic, whose requests judge it)"));
 }
 
 const Param* style_field(const std::string& style, const std::string& name) {
@@ -190,8 +179,8 @@ void check_fit(const config::StageCheck& c) {
 }
 
 // A column of a resolved table reference, in metal units.
-std::vector<double> column(const YAML::Node& table, const std::string& name,
-                           const std::string& alternative = "") {
+std::vector<double> column_from_yaml(const YAML::Node& table, const std::string& name,
+                                     const std::string& alternative = "") {
   YAML::Node c = table[name];
   if (!c && !alternative.empty()) c = table[alternative];
   if (!c || !c["values"]) {
@@ -286,6 +275,8 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
   f.material = stage["material"].as<std::string>();
   f.atoms_per_particle = materials[f.material]["atoms_per_particle"].as<int>(8);
   f.start_potential = YAML::Clone(materials[f.material]["potential"]);
+  f.style = f.start_potential["style"].as<std::string>();
+  if (f.start_potential["cutoff"]) f.start_cutoff = f.start_potential["cutoff"].as<double>();
   for (const auto& kv : stage["free"]) {
     const auto b = kv.second.as<std::vector<double>>();
     const std::string name = kv.first.as<std::string>();
@@ -297,8 +288,8 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
   f.judge.temperature = stage["temperature"].as<double>();
   if (const YAML::Node iso = stage["isotherm"]) {
     IsothermTarget t;
-    t.pressure = column(iso["table"], "pressure");
-    t.volume_per_atom = column(iso["table"], "volume_per_atom");
+    t.pressure = column_from_yaml(iso["table"], "pressure");
+    t.volume_per_atom = column_from_yaml(iso["table"], "volume_per_atom");
     if (t.pressure.size() != t.volume_per_atom.size() || t.pressure.empty()) {
       throw Error("the isotherm target's pressure and volume_per_atom columns differ in length");
     }
@@ -332,12 +323,7 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
   f.optimizer.x_tolerance = o["x_tolerance"].as<double>();
   f.optimizer.f_tolerance = o["f_tolerance"].as<double>();
   f.optimizer.static_prefit = o["static_prefit"].as<bool>();
-  const YAML::Node j = stage["judge"];
-  f.judge.cells = j["cells"].as<int>();
-  f.judge.equilibration_steps = j["equilibration_steps"].as<int>();
-  f.judge.sampling_steps = j["sampling_steps"].as<int>();
-  f.judge.gamma = j["gamma"].as<double>();
-  f.judge.time_step = j["time_step"].as<double>();
+  f.judge.sampling = config::CrystalSampling::from_yaml(stage["judge"]);
   f.group_ranks = stage["group_ranks"].as<int>();
   return f;
 }

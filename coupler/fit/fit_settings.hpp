@@ -9,6 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "pbms/config/crystal_sampling.hpp"
 #include "pbms/config/param.hpp"
 #include "pbms/config/stage_kind.hpp"
 
@@ -45,18 +46,18 @@ struct OptimizerSettings {
 };
 
 // What every judging request shares besides the candidate's potential.
+// The candidates' crystal: at the targets' temperature, sampled as the
+// `judge` map says (dpd_driver's properties stages take the same keys).
 struct JudgeSettings {
   double temperature = 298.0;
-  int cells = 0;
-  int equilibration_steps = 200;
-  int sampling_steps = 2000;
-  double gamma = 1.0e4;
-  double time_step = 0.01;
+  config::CrystalSampling sampling;
 };
 
 struct FitSettings {
   std::string material;
-  YAML::Node start_potential;  // the material's potential map
+  YAML::Node start_potential;          // the material's potential map
+  std::string style;                   // its pair style
+  std::optional<double> start_cutoff;  // Å, where its style has one
   std::vector<FreeParameter> free;
   std::optional<IsothermTarget> isotherm;
   std::optional<ElasticTarget> elastic;

@@ -41,7 +41,7 @@ std::string ConcurrentParams::part(Solver s) const {
                      dpd ? " and particles in no region" : "");
 }
 
-ConcurrentParams concurrent_params(const YAML::Node& p) {
+ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::Node& material) {
   ConcurrentParams c;
   const YAML::Node g = p["grid"];
   const auto origin = g["origin"].as<std::vector<double>>();
@@ -59,6 +59,8 @@ ConcurrentParams concurrent_params(const YAML::Node& p) {
   c.interface_name = p["interface"].as<std::string>();
   c.interface = treatment(c.interface_name);
   c.material = p["material"].as<std::string>();
+  c.particle_mass = material["mass"].as<double>();
+  c.material_lattice_constant = material["lattice_constant"].as<double>();
   for (const auto& m : p["motion"]) {
     const auto kind = m["kind"].as<std::string>();
     if (kind != "rigid" && kind != "frozen") continue;

@@ -13,6 +13,7 @@
 
 #include "dpd_part_of_body.hpp"
 #include "dpd_run.hpp"
+#include "dpd_stage_params.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "pbms/coupling/body_handover.hpp"
@@ -200,8 +201,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': mpm_driver is not running", ctx.stage()));
   }
-  const YAML::Node material = ctx.material(ctx.params()["material"].as<std::string>());
-  DpdPartOfBody part(ctx.comm(), ctx.params(), material, ctx.seed(), ctx.stage());
+  DpdPartOfBody part(ctx.comm(), ctx.params(), ctx.material(), ctx.seed(), ctx.stage());
   const coupling::ConcurrentParams& cp = part.params();
   std::optional<TensionSeries> tension;
   if (cp.tension) tension.emplace(*cp.tension, part);
@@ -217,8 +217,7 @@ void ConcurrentStage::run(StageContext& ctx) {
 
   DpdView view;
   coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),
-                                    0.5 * material["lattice_constant"].as<double>(),
-                                    view.view(engine));
+                                    0.5 * cp.material_lattice_constant, view.view(engine));
   // The whole body's mass and momentum: this part's and mpm_driver's.
   const double body_mass =
       coupling::swap_scalar(inter, ctx.comm(),
@@ -288,8 +287,8 @@ void ConcurrentStage::run(StageContext& ctx) {
   r.add_scalar("mpm_points", part.mpm_points(), "1");
   r.add_scalar("dpd_temperature", engine.thermo(false).temperature, "K");
   // c = sqrt(E / rho) of the MPM material, bar Å³/(g/mol) to Å²/ps².
-  const double a = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());
-  const double rho = 4.0 * material["mass"].as<double>() / (a * a * a);
+  const double a = cp.point_lattice_constant();
+  const double rho = 4.0 * cp.particle_mass / (a * a * a);
   const double c = std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
   r.add_scalar("momentum_change", ledger.table().momentum_drift(inter) / (body_mass * c), "1");
   if (cp.opening && !opening.empty()) report_opening(r, opening_t, opening);

@@ -15,6 +15,7 @@
 #include "kernels/dpd_particles.hpp"
 #include "kernels/orthogonal_box.hpp"
 #include "kernels/pair_style.hpp"
+#include "stage/dpd_stage_params.hpp"
 
 namespace pbms::dpd {
 
@@ -64,7 +65,8 @@ void keep_final_state(const std::string& stage, DpdParticles all);
 // `seed` keys the initial velocities. Throws pbms::Error for more than 32
 // groups, a reused name, an unknown group in `motion`, an empty system, or
 // an unknown from_stage.
-[[nodiscard]] DpdModel build_dpd_model(const YAML::Node& params, const YAML::Node& material,
-                                       std::uint64_t seed, const std::string& stage);
+[[nodiscard]] DpdModel build_dpd_model(const DpdStageParams& params,
+                                       const MesoparticleMaterial& material, std::uint64_t seed,
+                                       const std::string& stage);
 
 }  // namespace pbms::dpd

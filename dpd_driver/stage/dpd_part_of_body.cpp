@@ -92,13 +92,15 @@ double extent_along(const DpdParticles& all, std::size_t axis, double plane) {
 
 DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML::Node& material,
                              std::uint64_t seed, const std::string& stage)
-    : cp_(coupling::concurrent_params(params)),
-      model_(build_dpd_model(params, material, stage_seed(seed, stage), stage)) {
+    : cp_(coupling::ConcurrentParams::from_yaml(params, material)),
+      model_(build_dpd_model(DpdStageParams::from_yaml(params),
+                             MesoparticleMaterial::from_yaml(material), stage_seed(seed, stage),
+                             stage)) {
   // A state from an earlier stage may lie a little outside the box on a
   // periodic axis (positions wrap at list builds only); the regions see it
   // inside.
   wrap_periodic_axes(model_.particles, model_.box, model_.particles.size());
-  const double plane = 0.5 * material["lattice_constant"].as<double>();
+  const double plane = 0.5 * cp_.material_lattice_constant;
   for (std::size_t a = 0; a < 3; ++a) extent_[a] = extent_along(model_.particles, a, plane);
   SplitBody body = split_body(model_.particles, cp_);
   model_.particles = DpdParticles{};  // now in `body`

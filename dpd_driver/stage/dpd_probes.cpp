@@ -16,11 +16,11 @@ void sum_all(MPI_Comm comm, double* data, int n) {
 
 }  // namespace
 
-DpdProbes::DpdProbes(const YAML::Node& probes, const DpdModel& model) {
+DpdProbes::DpdProbes(const std::vector<DpdProbeSpec>& probes, const DpdModel& model) {
   const char* xyz[] = {"x", "y", "z"};
   for (const auto& p : probes) {
-    const auto name = p["name"].as<std::string>();
-    const auto kind = p["kind"].as<std::string>();
+    const std::string& name = p.name;
+    const std::string& kind = p.kind;
     Probe probe{};
     auto add = [&](const std::string& suffix, const std::string& unit) {
       std::string column = name;
@@ -47,17 +47,16 @@ DpdProbes::DpdProbes(const YAML::Node& probes, const DpdModel& model) {
       for (const char* c : xyz) add(c, "g/mol*Å/ps");
     } else if (kind == "slab_displacement") {
       probe.kind = Kind::kSlab;
-      probe.mask = model.group_mask(p["group"].as<std::string>());
+      probe.mask = model.group_mask(p.group);
       for (const char* c : xyz) add(c, "Å");
     } else if (kind == "group_force") {
       probe.kind = Kind::kForce;
-      probe.mask = model.group_mask(p["group"].as<std::string>());
+      probe.mask = model.group_mask(p.group);
       for (const char* c : xyz) add(c, "eV/Å");
     } else {
       probe.kind = Kind::kExtent;
-      probe.mask = model.group_mask(p["group"].as<std::string>());
-      const auto axis = p["axis"].as<std::string>();
-      probe.axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+      probe.mask = model.group_mask(p.group);
+      probe.axis = p.axis;
       columns_.push_back(name);
       units_.push_back("Å");
     }

@@ -7,16 +7,15 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "dpd_model.hpp"
+#include "dpd_stage_params.hpp"
 #include "engine/dpd_engine.hpp"
 
 namespace pbms::dpd {
 
 class DpdProbes {
  public:
-  DpdProbes(const YAML::Node& probes, const DpdModel& model);
+  DpdProbes(const std::vector<DpdProbeSpec>& probes, const DpdModel& model);
 
   [[nodiscard]] const std::vector<std::string>& columns() const { return columns_; }
   [[nodiscard]] const std::vector<std::string>& units() const { return units_; }

@@ -9,10 +9,6 @@
 
 namespace pbms::dpd {
 
-// The parameters every stage that builds a DPD model takes (box, bodies or
-// initial state, groups, motion, integrator, probes, output), declared once.
-[[nodiscard]] std::vector<config::Param> dpd_stage_params();
-
 class DpdRunStage : public StageKind {
  public:
   static config::StageKindSpec spec();

@@ -73,13 +73,13 @@ config::StageKindSpec ConcurrentMpmPart::spec() {
 }
 
 void ConcurrentMpmPart::run(StageContext& ctx) {
-  const coupling::ConcurrentParams cp = coupling::concurrent_params(ctx.params());
+  const coupling::ConcurrentParams cp =
+      coupling::ConcurrentParams::from_yaml(ctx.params(), ctx.material());
   const MPI_Comm inter = ctx.peer("dpd_driver");
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': dpd_driver is not running", ctx.stage()));
   }
-  const YAML::Node material = ctx.material(cp.material);
-  MpmPartOfBody part(ctx.comm(), cp, coupling::take_over(inter, ctx.comm()), material);
+  MpmPartOfBody part(ctx.comm(), cp, coupling::take_over(inter, ctx.comm()));
   MpmEngine& engine = part.engine();
   const auto& groups = part.group_names();
   const double a = part.lattice_constant();
@@ -91,7 +91,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   coupling::CouplingScheme scheme({&part.side()}, link, cp.interface);
 
   coupling::ConcurrentProbes probes(ctx.comm(), cp, groups, 0.5 * a, view_of(engine.points()));
-  const double mass = static_cast<double>(engine.total_points()) * material["mass"].as<double>();
+  const double mass = static_cast<double>(engine.total_points()) * cp.particle_mass;
   (void)coupling::swap_scalar(inter, ctx.comm(), mass);
   coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"});
   auto add_to_ledger = [&](std::int64_t n) {

@@ -44,17 +44,17 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::BodyHand
 }  // namespace
 
 MpmPartOfBody::MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp,
-                             const coupling::BodyHandover& body, const YAML::Node& material) {
+                             const coupling::BodyHandover& body) {
   groups_ = body.groups;
   band_ = body.band();
   reach_ = body.reach;
-  lattice_constant_ = cp.lattice_constant.value_or(material["lattice_constant"].as<double>());
+  lattice_constant_ = cp.point_lattice_constant();
   const double a = lattice_constant_;
   const double volume = a * a * a / 4.0;  // one fcc site
   MaterialSet materials;
   materials.models.push_back(std::make_unique<LinearElastic>(cp.youngs_modulus, cp.poisson_ratio));
   materials.names.push_back("continuum");
-  materials.density.push_back(material["mass"].as<double>() / volume);
+  materials.density.push_back(cp.particle_mass / volume);
   engine_ = std::make_unique<MpmEngine>(comm, model_of(cp, body, volume), std::move(materials));
   side_ = std::make_unique<ConcurrentMpmSide>(*engine_, cp.time_step, body.skin);
   time_step_ = cp.time_step;

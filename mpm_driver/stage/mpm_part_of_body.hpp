@@ -25,7 +25,7 @@ namespace pbms::mpm {
 class MpmPartOfBody {
  public:
   MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp,
-                const coupling::BodyHandover& body, const YAML::Node& material);
+                const coupling::BodyHandover& body);
 
   [[nodiscard]] const std::vector<std::string>& group_names() const { return groups_; }
   [[nodiscard]] const grid::NodeBox& band() const { return band_; }

@@ -47,7 +47,8 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 # node["key"], not followed by an assignment (building a request's map).
 KEYED_READ = re.compile(r'[\w)\]]\s*\[\s*"[A-Za-z_][A-Za-z0-9_]*"\s*\](?!\s*=[^=])')
 # What makes a subscript a write into a results map rather than a read.
-RESULT_WRITE = re.compile(r'(attributes|\.scalars|\.columns)\s*\[\s*"[^"]*"\s*\]')
+RESULT_WRITE = re.compile(r'(attributes|\.scalars|\.columns)\s*\[\s*"[^"]*"\s*\]'
+                          r'|\[\s*"[^"]*"\s*\]\s*\.push_back\(')
 FUNCTION_START = re.compile(r"^[A-Za-z_][\w:<>,\s\*&]*?\b([A-Za-z_]\w*)\s*\(")
 NOT_FUNCTION = re.compile(r"^(namespace|using|class|struct|enum|template|typedef|extern|static_assert)\b")
 
@@ -106,17 +107,30 @@ def strip_comment_and_strings(line):
 def keyed_reads(text):
     """(line number, function name) of every string-keyed read outside a reader."""
     found = []
-    function = None
+    functions = []  # (indent, name) of the definitions the line is inside
+    pending = None  # a definition whose signature has not reached its '{' yet
     for n, line in enumerate(text.splitlines(), 1):
-        if line.startswith("}"):
-            function = None
-        elif line and not line[0].isspace() and not NOT_FUNCTION.match(line):
-            m = FUNCTION_START.match(line)
-            if m:
-                function = m.group(1)
+        stripped = line.lstrip()
+        indent = len(line) - len(stripped)
+        while functions and stripped.startswith("}") and indent <= functions[-1][0]:
+            functions.pop()
+        if stripped and not stripped.startswith(("//", "#", "}", "return", "if", "for", "while",
+                                                 "switch", "else", "case")) \
+                and not NOT_FUNCTION.match(stripped):
+            m = FUNCTION_START.match(stripped)
+            if m and not stripped.rstrip().endswith(";"):
+                pending = (indent, m.group(1))
+        if pending and line.rstrip().endswith("{") and pending[0] <= indent:
+            functions.append(pending)
+            pending = None
+            if line.rstrip().endswith("}"):
+                functions.pop()
+        elif pending and line.rstrip().endswith(";"):
+            pending = None
         code = RESULT_WRITE.sub("", strip_comment_and_strings(line))
         if not KEYED_READ.search(code):
             continue
+        function = functions[-1][1] if functions else None
         if function and (function.endswith("from_yaml") or function.startswith("check")):
             continue
         found.append((n, function or "?"))

@@ -43,7 +43,7 @@ std::map<std::int64_t, Row> advance(const YAML::Node& config, const std::string&
   pbms::dpd::DpdPartOfBody dpd(MPI_COMM_SELF, params, material,
                                config["run"]["seed"].as<std::uint64_t>(), stage);
   const pbms::coupling::ConcurrentParams& cp = dpd.params();
-  pbms::mpm::MpmPartOfBody mpm(MPI_COMM_SELF, cp, dpd.handover(), material);
+  pbms::mpm::MpmPartOfBody mpm(MPI_COMM_SELF, cp, dpd.handover());
   pbms::coupling::InProcessLink link(dpd.side(), mpm.side());
   pbms::coupling::CouplingScheme scheme({&dpd.side(), &mpm.side()}, link, cp.interface);
   for (std::int64_t n = 1; n <= cp.steps; ++n) {

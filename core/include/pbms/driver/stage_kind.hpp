@@ -33,8 +33,10 @@ class StageContext {
   [[nodiscard]] const std::string& stage() const { return stage_; }
   [[nodiscard]] const std::string& kind() const { return kind_; }
   [[nodiscard]] const YAML::Node& params() const { return params_; }
-  // The resolved entry of `materials:` that the stage's `material` key names.
+  // The resolved entry of `materials:` called `name`.
   [[nodiscard]] YAML::Node material(const std::string& name) const;
+  // The one the stage's `material` key names.
+  [[nodiscard]] YAML::Node material() const;
   [[nodiscard]] uint64_t seed() const { return seed_; }
 
   // The ranks that run this request: all ranks of the program, or the

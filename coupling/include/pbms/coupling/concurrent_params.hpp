@@ -67,7 +67,9 @@ struct ConcurrentParams {
   // point's volume is a³/4), when given; else the material's.
   std::optional<double> lattice_constant;
   std::string material;        // the stage's dpd_mesoparticle material
-  std::string interface_name;  // as written: none, seed, momentum_conserving
+  double particle_mass = 0.0;  // g/mol: the material's mesoparticle, and so each MPM point
+  double material_lattice_constant = 0.0;  // Å: the material's
+  std::string interface_name;              // as written: none, seed, momentum_conserving
   std::vector<HeldGroup> held;
   double time_step = 0.0;  // ps
   std::int64_t steps = 0, sample_every = 1, particles_every = 0, profile_every = 0;
@@ -81,6 +83,15 @@ struct ConcurrentParams {
   std::optional<std::pair<std::string, std::string>> opening;  // dpd plane, mpm plane
   std::optional<TensionProbe> tension;
 
+  // Reads a `concurrent` stage's validated parameters (metal units) and
+  // its dpd_mesoparticle material.
+  static ConcurrentParams from_yaml(const YAML::Node& params, const YAML::Node& material);
+
+  // Each MPM point's lattice constant (its volume is a³/4): the continuum's,
+  // or the material's.
+  [[nodiscard]] double point_lattice_constant() const {
+    return lattice_constant.value_or(material_lattice_constant);
+  }
   // The solver of a particle at x: the first region holding it, DPD when
   // none does (a flyer outside the body's regions).
   [[nodiscard]] Solver solver_at(const geometry::Vec3& x) const;
@@ -88,8 +99,5 @@ struct ConcurrentParams {
   // (region 'right')".
   [[nodiscard]] std::string part(Solver s) const;
 };
-
-// Reads a `concurrent` stage's validated parameters (metal units).
-[[nodiscard]] ConcurrentParams concurrent_params(const YAML::Node& params);
 
 }  // namespace pbms::coupling

@@ -1,0 +1,48 @@
+#include "dpd_run_params.hpp"
+
+namespace pbms::dpd {
+
+ImpactParams ImpactParams::from_yaml(const YAML::Node& impact) {
+  ImpactParams i;
+  i.near_slab = impact["near_slab"].as<std::string>();
+  i.far_slab = impact["far_slab"].as<std::string>();
+  i.axis = axis_index(impact["axis"].as<std::string>());
+  i.threshold = impact["threshold"].as<double>();
+  i.mid_amplitude = impact["arrival"].as<std::string>() == "mid_amplitude";
+  i.smoothing = impact["smoothing"].as<double>();
+  i.window = impact["window"].as<double>();
+  return i;
+}
+
+TensionParams TensionParams::from_yaml(const YAML::Node& tension) {
+  TensionParams t;
+  t.specimen = tension["specimen"].as<std::string>();
+  t.axis = axis_index(tension["axis"].as<std::string>());
+  if (tension["area"]) t.area = tension["area"].as<double>();
+  if (const YAML::Node g = tension["grips"]) {
+    t.grips = std::make_pair(g["left"].as<std::string>(), g["right"].as<std::string>());
+  }
+  t.test = analysis::TensionTest::from_yaml(tension);
+  return t;
+}
+
+DpdRunParams DpdRunParams::from_yaml(const YAML::Node& p) {
+  DpdRunParams r;
+  const auto mode = p["mode"].as<std::string>();
+  r.mode = mode == "impact" ? Mode::kImpact : mode == "tension" ? Mode::kTension : Mode::kFree;
+  r.stage = DpdStageParams::from_yaml(p);
+  if (r.mode == Mode::kImpact && p["impact"]) r.impact = ImpactParams::from_yaml(p["impact"]);
+  if (r.mode == Mode::kTension && p["tension"]) r.tension = TensionParams::from_yaml(p["tension"]);
+  return r;
+}
+
+DpdRunParams DpdRunParams::equilibrate_from_yaml(const YAML::Node& p) {
+  DpdRunParams r;
+  r.mode = Mode::kEquilibrate;
+  r.stage = DpdStageParams::from_yaml(p);
+  r.target_temperature = p["target_temperature"].as<double>();
+  r.tau = p["tau"].as<double>();
+  return r;
+}
+
+}  // namespace pbms::dpd

@@ -1,0 +1,60 @@
+#include "dpd_tension_analysis.hpp"
+
+#include <fmt/format.h>
+
+#include "dpd_probes.hpp"
+#include "pbms/units.hpp"
+
+namespace pbms::dpd {
+
+DpdTensionAnalysis::DpdTensionAnalysis(const TensionParams& params, const DpdModel& model,
+                                       double lattice_constant)
+    : params_(params), plane_(0.5 * lattice_constant) {
+  if (params.test.gauge) {
+    gauge_ = std::make_unique<DpdGauge>(*params.test.gauge, model.particles,
+                                        model.group_mask(params.specimen), params.axis, plane_);
+  }
+  specimen_ = model.group_mask(params.specimen);
+  if (params.grips) {
+    left_grip_ = model.group_mask(params.grips->first);
+    right_grip_ = model.group_mask(params.grips->second);
+  }
+}
+
+void DpdTensionAnalysis::start(const DpdEngine& engine) {
+  // An fcc crystal of n cells spans n a; its outermost sites, n a − a/2.
+  length0_ = DpdProbes::extent(engine, specimen_, params_.axis) + plane_;
+  if (params_.area) {
+    area_ = *params_.area;
+    return;
+  }
+  area_ = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    if (a != params_.axis) area_ *= DpdProbes::extent(engine, specimen_, a) + plane_;
+  }
+}
+
+void DpdTensionAnalysis::sample(const DpdEngine& engine, const ThermoState& thermo) {
+  const int axis = params_.axis;
+  const double length = DpdProbes::extent(engine, specimen_, axis) + plane_;
+  strain_.push_back((length - length0_) / length0_);
+  // Tension positive: σ = −W / V, eV/Å^3 to GPa.
+  stress_.push_back(-thermo.virial[static_cast<std::size_t>(axis)] / (area_ * length) *
+                    units::kBarPerEvPerA3 / units::kBarPerGPa);
+  if (gauge_) gauge_->sample(engine);
+  if (left_grip_ != 0) {
+    const auto a = static_cast<std::size_t>(axis);
+    const double pull = 0.5 * (DpdProbes::group_force(engine, left_grip_)[a] -
+                               DpdProbes::group_force(engine, right_grip_)[a]);
+    grip_stress_.push_back(pull / area_ * units::kBarPerEvPerA3 / units::kBarPerGPa);
+  }
+}
+
+void DpdTensionAnalysis::report(StageResults& r, const std::string& stage) const {
+  params_.test.report(r, strain_, stress_, stage);
+  if (left_grip_ != 0) params_.test.report_grips(r, strain_, stress_, grip_stress_, stage);
+  if (gauge_) gauge_->report(params_.test, r, stage);
+  r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area_);
+}
+
+}  // namespace pbms::dpd
