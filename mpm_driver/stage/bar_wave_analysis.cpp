@@ -27,12 +27,27 @@ std::vector<double> column(const std::vector<double>& rows, std::size_t c) {
 
 }  // namespace
 
-BarWaveAnalysis::BarWaveAnalysis(const YAML::Node& wf, const MpmEngine& engine, double dt,
+WaveFrontParams WaveFrontParams::from_yaml(const YAML::Node& wf) {
+  WaveFrontParams p;
+  p.group = wf["group"].as<std::string>();
+  p.loaded_end = wf["loaded_end"].as<double>();
+  p.fixed_end = wf["fixed_end"].as<double>();
+  p.traction = wf["traction"].as<double>();
+  p.profile_time = wf["profile_time"].as<double>();
+  if (wf["rms_reference"]) p.rms_reference = wf["rms_reference"].as<double>();
+  if (wf["variation_reference"]) p.variation_reference = wf["variation_reference"].as<double>();
+  return p;
+}
+
+BarWaveAnalysis::BarWaveAnalysis(const WaveFrontParams& wf, const MpmEngine& engine, double dt,
                                  std::int64_t steps, const std::string& stage)
-    : mask_(engine.model().group_mask(wf["group"].as<std::string>())), params_(wf), steps_(steps) {
-  bar_.loaded_end = wf["loaded_end"].as<double>();
-  bar_.fixed_end = wf["fixed_end"].as<double>();
-  bar_.traction = wf["traction"].as<double>();
+    : mask_(engine.model().group_mask(wf.group)),
+      rms_reference_(wf.rms_reference),
+      variation_reference_(wf.variation_reference),
+      steps_(steps) {
+  bar_.loaded_end = wf.loaded_end;
+  bar_.fixed_end = wf.fixed_end;
+  bar_.traction = wf.traction;
   const grid::MaterialPoints& pts = engine.points();
   const auto& units = engine.model().options.units;
   double c = 0.0;
@@ -44,7 +59,7 @@ BarWaveAnalysis::BarWaveAnalysis(const YAML::Node& wf, const MpmEngine& engine, 
   }
   bar_.wave_speed = allreduce_max(engine.comm(), c);
   plateau_step_ = std::llround(0.8 * bar_.transit_time() / dt);
-  profile_step_ = std::llround(wf["profile_time"].as<double>() / dt);
+  profile_step_ = std::llround(wf.profile_time / dt);
   if (profile_step_ > steps) {
     throw Error(
         fmt::format("stage '{}': wave_front.profile_time is after the end of the run", stage));
@@ -106,12 +121,9 @@ void BarWaveAnalysis::report(StageResults& r, bool metal, const std::string& sta
   if (plateau_step_ <= steps_) r.add_scalar("plateau_stress", plateau_, stress_unit);
   r.add_scalar("rms_from_exact", rms_, stress_unit);
   r.add_scalar("excess_variation", variation_, stress_unit);
-  if (params_["rms_reference"]) {
-    r.add_scalar("rms_ratio_mpm_over_ddmp", params_["rms_reference"].as<double>() / rms_, "1");
-  }
-  if (params_["variation_reference"]) {
-    r.add_scalar("variation_ratio_mpm_over_ddmp",
-                 params_["variation_reference"].as<double>() / variation_, "1");
+  if (rms_reference_) r.add_scalar("rms_ratio_mpm_over_ddmp", *rms_reference_ / rms_, "1");
+  if (variation_reference_) {
+    r.add_scalar("variation_ratio_mpm_over_ddmp", *variation_reference_ / variation_, "1");
   }
   r.add_column("front", "time", metal ? "ps" : "1", front_t_);
   r.add_column("front", "distance", metal ? "Å" : "1", front_s_);

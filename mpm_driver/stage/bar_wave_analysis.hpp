@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,11 +18,24 @@
 
 namespace pbms::mpm {
 
+// The stage's wave_front map.
+struct WaveFrontParams {
+  std::string group;  // the bar
+  double loaded_end = 0.0;
+  double fixed_end = 0.0;
+  double traction = 0.0;
+  double profile_time = 0.0;
+  std::optional<double> rms_reference;        // a plain MPM run's rms_from_exact
+  std::optional<double> variation_reference;  // a plain MPM run's excess_variation
+
+  static WaveFrontParams from_yaml(const YAML::Node& wave_front);
+};
+
 class BarWaveAnalysis {
  public:
-  // `wave_front` is the stage's wave_front map; the run takes `steps` of
-  // `dt`. Throws pbms::Error if the profile time is after the run.
-  BarWaveAnalysis(const YAML::Node& wave_front, const MpmEngine& engine, double dt,
+  // The run takes `steps` of `dt`. Throws pbms::Error if the profile time
+  // is after the run.
+  BarWaveAnalysis(const WaveFrontParams& wave_front, const MpmEngine& engine, double dt,
                   std::int64_t steps, const std::string& stage);
 
   // The front's position, while it is between 0.1 and 0.9 of its transit.
@@ -37,7 +51,7 @@ class BarWaveAnalysis {
 
   StepLoadedBar bar_;
   std::uint32_t mask_ = 0;
-  const YAML::Node params_;
+  std::optional<double> rms_reference_, variation_reference_;
   std::int64_t steps_ = 0, plateau_step_ = -1, profile_step_ = -1;
   std::vector<double> front_t_, front_s_, profile_;
   double plateau_ = NAN, rms_ = NAN, variation_ = NAN, profile_t_ = -1.0;

@@ -11,8 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "pbms/geometry/region.hpp"
-#include "pbms/geometry/region_yaml.hpp"
+#include "mpm_model_params.hpp"
 #include "pbms/grid/mpm_solver.hpp"
 
 namespace pbms::mpm {
@@ -52,15 +51,15 @@ struct MpmModel {
 void ramp_point_velocities(const MpmModel& model, grid::BoundaryConditions& bc, std::int64_t step,
                            double dt);
 
-using geometry::region_from_yaml;
-
 // Reads the stage's `materials` entries that `bodies` use, converting
 // densities and moduli to solver units when `metal_units`.
 [[nodiscard]] MaterialSet materials_from_yaml(const std::vector<std::string>& names,
                                               const std::vector<YAML::Node>& entries,
                                               bool metal_units);
 
-// `material_entry(name)` returns the workflow's materials entry of a name.
-[[nodiscard]] MpmModel build_model(const YAML::Node& params, MaterialSet& materials);
+// Throws pbms::Error for names that clash, a body of a material not in
+// `materials`, a body or a `nodes` region that catches nothing, an unknown
+// group, or a loaded group without points.
+[[nodiscard]] MpmModel build_model(const MpmModelParams& params, MaterialSet& materials);
 
 }  // namespace pbms::mpm

@@ -9,7 +9,23 @@
 
 namespace pbms::mpm {
 
-MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal_units) {
+ProbeSpec ProbeSpec::from_yaml(const YAML::Node& n) {
+  ProbeSpec s;
+  s.name = n["name"].as<std::string>();
+  s.kind = n["kind"].as<std::string>();
+  if (n["group"]) s.group = n["group"].as<std::string>();
+  if (n["axis"]) s.axis = n["axis"].as<std::string>();
+  return s;
+}
+
+std::vector<ProbeSpec> ProbeSpec::list_from_yaml(const YAML::Node& probes) {
+  std::vector<ProbeSpec> out;
+  for (const auto& n : probes) out.push_back(from_yaml(n));
+  return out;
+}
+
+MpmProbes::MpmProbes(const std::vector<ProbeSpec>& probes, const MpmModel& model,
+                     bool metal_units) {
   const std::string energy = metal_units ? "eV" : "1";
   const std::string length = metal_units ? "Å" : "1";
   const std::string stress = metal_units ? "bar" : "1";
@@ -17,14 +33,14 @@ MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal
   const std::string momentum = metal_units ? "g/mol Å/ps" : "1";
   const std::string volume = metal_units ? "Å^3" : "1";
   const char* xyz[] = {"x", "y", "z"};
-  for (const auto& n : probes) {
+  for (const ProbeSpec& spec : probes) {
     Probe p;
-    p.name = n["name"].as<std::string>();
-    p.kind = n["kind"].as<std::string>();
+    p.name = spec.name;
+    p.kind = spec.kind;
     p.sum_offset = n_sums_;
     p.max_offset = n_max_;
     p.column = columns_.size();
-    if (n["group"]) p.mask = model.group_mask(n["group"].as<std::string>());
+    if (spec.group) p.mask = model.group_mask(*spec.group);
     auto add = [&](const std::string& c, const std::string& u) {
       columns_.push_back(p.name + "." + c);
       units_.push_back(u);
@@ -47,7 +63,7 @@ MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal
       for (const char* c : xyz) add(c, length);
       n_sums_ += 4;  // mass-weighted position and the mass
     } else if (p.kind == "group_force") {
-      const auto group = n["group"].as<std::string>();
+      const std::string& group = spec.group.value();
       for (size_t k = 0; k < model.point_velocity_groups.size(); ++k) {
         if (model.point_velocity_groups[k] == group) p.point_velocity = static_cast<int>(k);
       }
@@ -60,7 +76,7 @@ MpmProbes::MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal
       for (const char* c : xyz) add(c, force);
       n_sums_ += 3;
     } else if (p.kind == "group_extent") {
-      const auto a = n["axis"].as<std::string>();
+      const std::string& a = spec.axis;
       p.axis = a == "x" ? 0 : a == "y" ? 1 : 2;
       add(a, length);
       n_max_ += 2;  // max and -min

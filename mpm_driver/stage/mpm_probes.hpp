@@ -3,6 +3,7 @@
 // call each, then turns the reduced numbers into its columns.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,11 +14,22 @@
 
 namespace pbms::mpm {
 
+// One entry of the stage's probe list.
+struct ProbeSpec {
+  std::string name;
+  std::string kind;
+  std::optional<std::string> group;
+  std::string axis;  // group_extent: x, y or z
+
+  static ProbeSpec from_yaml(const YAML::Node& probe);
+  static std::vector<ProbeSpec> list_from_yaml(const YAML::Node& probes);
+};
+
 class MpmProbes {
  public:
-  // `probes` is the stage's probe list; group names are checked against
-  // the model. Records the groups' starting centres of mass.
-  MpmProbes(const YAML::Node& probes, const MpmModel& model, bool metal_units);
+  // Group names are checked against the model. Records the groups'
+  // starting centres of mass.
+  MpmProbes(const std::vector<ProbeSpec>& probes, const MpmModel& model, bool metal_units);
 
   // Column names and units, in the order of values().
   [[nodiscard]] const std::vector<std::string>& columns() const { return columns_; }

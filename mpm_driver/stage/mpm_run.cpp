@@ -17,14 +17,14 @@ namespace pbms::mpm {
 namespace {
 
 // The materials the bodies use, in order of first use, in solver units.
-MaterialSet body_materials(StageContext& ctx, bool metal_units) {
+MaterialSet body_materials(StageContext& ctx, const std::vector<BodyParams>& bodies,
+                           bool metal_units) {
   std::vector<std::string> names;
   std::vector<YAML::Node> entries;
-  for (const auto& b : ctx.params()["bodies"]) {
-    const auto name = b["material"].as<std::string>();
-    if (std::find(names.begin(), names.end(), name) != names.end()) continue;
-    names.push_back(name);
-    entries.push_back(ctx.material(name));
+  for (const auto& b : bodies) {
+    if (std::find(names.begin(), names.end(), b.material) != names.end()) continue;
+    names.push_back(b.material);
+    entries.push_back(ctx.material(b.material));
   }
   return materials_from_yaml(names, entries, metal_units);
 }
@@ -32,20 +32,19 @@ MaterialSet body_materials(StageContext& ctx, bool metal_units) {
 }  // namespace
 
 void MpmRunStage::run(StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  const MpmRunParams params = MpmRunParams::from_yaml(p);
-  MaterialSet materials = body_materials(ctx, params.metal_units);
-  MpmModel model = build_model(p, materials);
+  const MpmRunParams params = MpmRunParams::from_yaml(ctx.params());
+  MaterialSet materials = body_materials(ctx, params.model.bodies, params.metal_units);
+  MpmModel model = build_model(params.model, materials);
   MpmEngine engine(ctx.comm(), std::move(model), std::move(materials));
 
   const double dt =
       params.time_step_for(engine.stable_time_step(), engine.model().grid.cell_size(), ctx.stage());
   const std::int64_t steps = params.steps(dt);
-  ProbeSeries probes(p["probes"], engine.model(), params.metal_units);
+  ProbeSeries probes(params.probes, engine.model(), params.metal_units);
   std::optional<BarWaveAnalysis> bar;
-  if (p["wave_front"]) bar.emplace(p["wave_front"], engine, dt, steps, ctx.stage());
+  if (params.wave_front) bar.emplace(*params.wave_front, engine, dt, steps, ctx.stage());
   std::optional<RodTensionAnalysis> tension;
-  if (p["tension"]) tension.emplace(p["tension"], engine, params.metal_units, ctx.stage());
+  if (params.tension) tension.emplace(*params.tension, engine, params.metal_units, ctx.stage());
   MpmOutput output(engine, params, ctx.stage_dir(), ctx.stage());
 
   // A run of 0 steps still samples and writes the initial state.

@@ -10,6 +10,7 @@ namespace pbms::mpm {
 
 MpmRunParams MpmRunParams::from_yaml(const YAML::Node& p) {
   MpmRunParams r;
+  r.model = MpmModelParams::from_yaml(p);
   r.metal_units = p["units"].as<std::string>() == "metal";
   if (p["time_step"].as<std::string>() != "auto") r.time_step = p["time_step"].as<double>();
   r.courant = p["courant"].as<double>();
@@ -19,6 +20,9 @@ MpmRunParams MpmRunParams::from_yaml(const YAML::Node& p) {
   r.grid_every = p["grid_every"].as<std::int64_t>();
   r.gradient = p["gradient"].as<std::string>();
   if (p["period_of"]) r.period_of = p["period_of"].as<std::string>();
+  r.probes = ProbeSpec::list_from_yaml(p["probes"]);
+  if (p["wave_front"]) r.wave_front = WaveFrontParams::from_yaml(p["wave_front"]);
+  if (p["tension"]) r.tension = RodTensionParams::from_yaml(p["tension"]);
   return r;
 }
 

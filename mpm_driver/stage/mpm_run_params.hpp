@@ -1,18 +1,25 @@
-// An mpm_run stage's run settings, read once from its checked parameters
-// (the schema is MpmRunStage::spec(), in mpm_run_spec.cpp). Bodies, groups
-// and conditions go to build_model, probes to ProbeSeries, the wave_front
-// map to BarWaveAnalysis.
+// An mpm_run stage's parameters, read once from its checked map (the schema
+// is MpmRunStage::spec(), in mpm_run_spec.cpp): the run settings here, the
+// model for build_model, the probes for ProbeSeries, the wave_front map for
+// BarWaveAnalysis and the tension map for RodTensionAnalysis.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
+
+#include "bar_wave_analysis.hpp"
+#include "mpm_model_params.hpp"
+#include "mpm_probes.hpp"
+#include "rod_tension_analysis.hpp"
 
 namespace pbms::mpm {
 
 struct MpmRunParams {
+  MpmModelParams model;
   bool metal_units = true;
   std::optional<double> time_step;  // empty: auto
   double courant = 0.5;
@@ -22,6 +29,9 @@ struct MpmRunParams {
   std::int64_t grid_every = 0;       // 0: no grid frames
   std::string gradient;
   std::string period_of;  // a probe column, or empty
+  std::vector<ProbeSpec> probes;
+  std::optional<WaveFrontParams> wave_front;
+  std::optional<RodTensionParams> tension;
 
   static MpmRunParams from_yaml(const YAML::Node& params);
 

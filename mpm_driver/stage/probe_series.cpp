@@ -23,7 +23,8 @@ void allreduce(MPI_Comm comm, const std::vector<double>& in, std::vector<double>
 
 }  // namespace
 
-ProbeSeries::ProbeSeries(const YAML::Node& probes, const MpmModel& model, bool metal_units)
+ProbeSeries::ProbeSeries(const std::vector<ProbeSpec>& probes, const MpmModel& model,
+                         bool metal_units)
     : probes_(probes, model, metal_units), columns_(probes_.columns().size()) {}
 
 void ProbeSeries::sample(const MpmEngine& engine, std::int64_t step, double t) {

@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "engine/mpm_engine.hpp"
 #include "mpm_probes.hpp"
 #include "mpm_run_params.hpp"
@@ -19,7 +17,7 @@ namespace pbms::mpm {
 
 class ProbeSeries {
  public:
-  ProbeSeries(const YAML::Node& probes, const MpmModel& model, bool metal_units);
+  ProbeSeries(const std::vector<ProbeSpec>& probes, const MpmModel& model, bool metal_units);
 
   // Collective. The sample at step 0 also fixes the probes' references.
   void sample(const MpmEngine& engine, std::int64_t step, double t);

@@ -36,15 +36,21 @@ double point_spacing(const MpmEngine& engine, std::uint32_t mask, std::size_t ax
 
 }  // namespace
 
-RodTensionAnalysis::RodTensionAnalysis(const YAML::Node& t, const MpmEngine& engine,
+RodTensionParams RodTensionParams::from_yaml(const YAML::Node& t) {
+  RodTensionParams p;
+  p.specimen = t["specimen"].as<std::string>();
+  const auto a = t["axis"].as<std::string>();
+  p.axis = a == "x" ? 0 : a == "y" ? 1 : 2;
+  p.test = analysis::TensionTest::from_yaml(t);
+  return p;
+}
+
+RodTensionAnalysis::RodTensionAnalysis(const RodTensionParams& t, const MpmEngine& engine,
                                        bool metal_units, const std::string& stage)
-    : test_(analysis::TensionTest::from_yaml(t)),
-      mask_(engine.model().group_mask(t["specimen"].as<std::string>())) {
+    : test_(t.test), mask_(engine.model().group_mask(t.specimen)), axis_(t.axis) {
   if (!metal_units) {
     throw Error(fmt::format("stage '{}': tension reports GPa and needs units: metal", stage));
   }
-  const auto a = t["axis"].as<std::string>();
-  axis_ = a == "x" ? 0 : a == "y" ? 1 : 2;
   for (std::size_t k = 0; k < 3; ++k) spacing_[k] = point_spacing(engine, mask_, k);
   const std::vector<double> m = measure(engine);
   length0_ = m[axis_];
@@ -53,8 +59,8 @@ RodTensionAnalysis::RodTensionAnalysis(const YAML::Node& t, const MpmEngine& eng
     if (k != axis_) area0_ *= m[k];
   }
   if (!(length0_ > 0.0 && area0_ > 0.0)) {
-    throw Error(fmt::format("stage '{}': tension.specimen '{}' holds no extended rod", stage,
-                            t["specimen"].as<std::string>()));
+    throw Error(
+        fmt::format("stage '{}': tension.specimen '{}' holds no extended rod", stage, t.specimen));
   }
   if (test_.gauge) find_gauge(engine);
 }

@@ -19,12 +19,20 @@
 
 namespace pbms::mpm {
 
+// The stage's tension map: the rod, its axis and the analysis' own keys.
+struct RodTensionParams {
+  std::string specimen;
+  std::size_t axis = 0;
+  analysis::TensionTest test;
+
+  static RodTensionParams from_yaml(const YAML::Node& tension);
+};
+
 class RodTensionAnalysis {
  public:
-  // `tension` is the stage's tension map. Collective: measures the rod's
-  // starting length and cross-section. Throws pbms::Error naming the stage
-  // unless the run is in metal units.
-  RodTensionAnalysis(const YAML::Node& tension, const MpmEngine& engine, bool metal_units,
+  // Collective: measures the rod's starting length and cross-section.
+  // Throws pbms::Error naming the stage unless the run is in metal units.
+  RodTensionAnalysis(const RodTensionParams& tension, const MpmEngine& engine, bool metal_units,
                      const std::string& stage);
 
   // Collective: one sample of strain and stress.
