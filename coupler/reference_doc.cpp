@@ -31,7 +31,7 @@ void table(std::string& out, const std::vector<const config::Param*>& fields) {
     std::string doc = p->doc;
     if (!doc.empty() && doc.back() != '.') doc += '.';
     if (p->min) doc += fmt::format(" Must be {} {}.", p->min_exclusive ? ">" : "≥", *p->min);
-    if (p->max) doc += fmt::format(" Must be ≤ {}.", *p->max);
+    if (p->max) doc += fmt::format(" Must be {} {}.", p->max_exclusive ? "<" : "≤", *p->max);
     if (p->allow_reference) doc += " May be `{from: <stage>.<output>}`.";
     if (p->names_material) doc += " Names an entry of `materials`.";
     if (!p->stage_kinds.empty()) {
@@ -75,7 +75,7 @@ std::string config_reference_markdown(const std::vector<config::DriverDescriptio
     out += fmt::format("## `{}`\n\n{}.\n\n", top.name, top.doc);
     table(out, ptrs(top.fields));
   }
-  const auto materials = config::materials_schema();
+  const auto materials = config::materials_schema(drivers);
   const auto& mat = materials.fields[0];
   out += "## `materials`\n\n" + materials.doc +
          ". Each entry is `<name>: {kind: ..., ...}`; stages name it in their `material` key.\n\n";

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 
 namespace pbms::coupler {
 

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Draw docs/architecture.png: the processes of one PBMS job and their messages.
+"""Draw docs/architecture.png (the processes of one PBMS job and their messages) and
+docs/figures/layers.png (the layers of the source tree and what may include what).
 
 Run with: /usr/bin/python3 docs/make_architecture_figure.py
 """
@@ -13,6 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import FancyArrowPatch, FancyBboxPatch  # noqa: E402
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "architecture.png")
+LAYERS_OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "figures", "layers.png")
 
 BLUE, GREEN, GREY, RED, ORANGE = "#dbe8f6", "#dff0d8", "#f2f2f2", "#c0392b", "#fbe9d0"
 
@@ -135,5 +137,42 @@ def main():
     print(OUT)
 
 
+def layers():
+    """The source tree's layers: each may include those below it, never beside."""
+    fig, ax = plt.subplots(figsize=(11, 6.2))
+    ax.set_xlim(0, 11)
+    ax.set_ylim(0, 6.2)
+    ax.axis("off")
+    box(ax, 0.3, 0.3, 10.7, 1.4, GREY,
+        "core/   units · config schema and validation · protocol · MPMD · driver runtime ·\n"
+        "geometry · HDF5/H5MD I/O · analysis (block averages, fits, cubic moduli, C_ij)", fs=9.5)
+    box(ax, 0.3, 1.8, 10.7, 2.8, GREEN,
+        "grid/   regular grid · partition · halo sums · shape functions · DDMP ·\n"
+        "the phased MPM step (solver, points, boundary conditions, lanes) · material interface",
+        fs=9.5)
+    box(ax, 0.3, 3.2, 10.7, 4.1, BLUE,
+        "coupling/   concurrent spec and typed parameters · body hand-over ·\n"
+        "CouplingScheme · links across programs (nodal sums, ghosts, held nodes)", fs=9.5)
+    drivers = (("md_driver/", "LAMMPS stages\nEAM material kinds"),
+               ("dpd_driver/", "kernels · engine ·\nstages · properties"),
+               ("mpm_driver/", "material models ·\nengine · stages"),
+               ("coupler/", "daemon · scheduler ·\nrun record · fit/"))
+    for i, (name, what) in enumerate(drivers):
+        x0 = 0.3 + i * 2.65
+        box(ax, x0, 4.5, x0 + 2.4, 5.9, ORANGE if name != "coupler/" else "#ede3f6",
+            f"{name}\n{what}", fs=9.5)
+    for x in (1.5, 4.15, 6.8, 9.45):
+        arrow(ax, (x, 4.5), (x, 4.15))
+    arrow(ax, (5.5, 3.2), (5.5, 2.85))
+    arrow(ax, (5.5, 1.8), (5.5, 1.45))
+    label(ax, 5.5, 6.08, "each box may include the ones below it; no driver includes another, "
+          "the coupler includes no driver (ctest layers)", fs=9, style="italic")
+    fig.tight_layout(pad=0.3)
+    os.makedirs(os.path.dirname(LAYERS_OUT), exist_ok=True)
+    fig.savefig(LAYERS_OUT, dpi=110)
+    print(LAYERS_OUT)
+
+
 if __name__ == "__main__":
     main()
+    layers()

@@ -4,6 +4,7 @@
 #include "stage/concurrent_stage.hpp"
 #include "stage/dpd_properties_stages.hpp"
 #include "stage/dpd_run.hpp"
+#include "stage/dpd_stage_params.hpp"
 
 int main(int argc, char** argv) {
   pbms::StageRegistry registry;
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   registry.add<pbms::dpd::DpdIsothermStage>();
   registry.add<pbms::dpd::DpdUniaxialStrainStage>();
   registry.add<pbms::dpd::ConcurrentStage>();
+  registry.add_material(pbms::dpd::MesoparticleMaterial::spec());
   pbms::DriverInfo info{"dpd_driver", "dpd", {}};
   return pbms::run_driver(argc, argv, info, registry);
 }

@@ -10,8 +10,9 @@ in WORK/old/<name>/ and WORK/new/<name>/, with the same seeds and rank counts
 so the old side can run first and the new one later (--only). Then, per
 config, it compares:
   - the exit code, and for a run that failed the error line, without timings;
-  - every value of summary.yaml but the wall times: bitwise, else the largest
-    relative difference is printed;
+  - every value of summary.yaml but the timings (wall times, steps per
+    second, seconds packing and waiting): bitwise, else the relative
+    difference is printed;
   - every numeric dataset of results.h5 alike (the tables the plots read).
 Exit 0 when every compared config agrees bitwise.
 """
@@ -30,6 +31,10 @@ try:
     import numpy as np
 except ImportError:  # the summaries are still compared
     h5py = None
+
+
+# Keys that time the run rather than describe its result.
+TIMING = re.compile(r"wall|per_second|seconds|waiting_fraction")
 
 
 def all_configs(root):
@@ -83,7 +88,7 @@ def compare_summaries(old, new):
     b = dict(flatten(yaml.safe_load(new.read_text())))
     diffs = []
     for key in sorted(set(a) | set(b)):
-        if key.endswith("wall_s"):
+        if TIMING.search(key):
             continue
         if key not in a or key not in b:
             diffs.append(f"{key}: only in {'new' if key in b else 'old'}")
@@ -113,7 +118,7 @@ def compare_results(old, new):
     a, b = datasets(old), datasets(new)
     diffs = []
     for key in sorted(set(a) | set(b)):
-        if "wall" in key:
+        if TIMING.search(key):
             continue
         if key not in a or key not in b:
             diffs.append(f"{key}: only in {'new' if key in b else 'old'}")

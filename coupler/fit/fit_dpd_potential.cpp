@@ -10,7 +10,7 @@
 #include <nlopt.hpp>
 
 // GCC 12 warns inside its own AVX-512 intrinsics when Eigen vectorises with
-// them (GCC bug 105593, fixed in 13), as core/src/equation_of_state.cpp says.
+// them (GCC bug 105593, fixed in 13), as core/src/analysis/equation_of_state.cpp says.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/Core>
@@ -47,15 +47,22 @@ struct Evaluation {
 
 // Metal unit of a style parameter, for summary.yaml. Morse's alpha is the one
 // parameter whose dimension (1/length) the schema has no word for.
-std::string parameter_unit(const std::string& style, const std::string& name) {
+std::string parameter_unit(const config::Param& schema, const std::string& style,
+                           const std::string& name) {
   if (style == "morse" && name == "alpha") return "1/Å";
-  const config::Param schema = config::dpd_potential_schema();
   for (const auto& f : schema.variants.at(style)) {
     if (f.name == name && f.dimension != units::Dimension::kNone) {
       return std::string(units::canonical_symbol(f.dimension));
     }
   }
   return "1";
+}
+
+// The pair styles' schema as dpd_driver declares it.
+const config::Param& schema_of(const CouplerStageContext& ctx) {
+  const config::Param* schema = potential_schema(ctx.drivers());
+  if (!schema) throw Error("no driver declares the dpd_mesoparticle material the fit refines");
+  return *schema;
 }
 
 const char* phase_name(int phase) {
@@ -78,6 +85,7 @@ class Fit {
         objective_(s_.isotherm, s_.elastic),
         judge_(ctx, s_),
         journal_(ctx.stage_dir() / "evaluations.journal", ctx.resume()),
+        potential_schema_(schema_of(ctx)),
         budget_(budget()) {}
 
   void run() {
@@ -413,7 +421,8 @@ class Fit {
     for (const auto& x : evaluations_) failed += x.judgement.ok ? 0 : 1;
     r.add_scalar("failed_evaluations", failed, "1");
     for (size_t k = 0; k < s_.free.size(); ++k) {
-      r.add_scalar(s_.free[k].name, e.params[k], parameter_unit(style, s_.free[k].name), errors[k]);
+      r.add_scalar(s_.free[k].name, e.params[k],
+                   parameter_unit(potential_schema_, style, s_.free[k].name), errors[k]);
     }
     write_potential(potential_of(e.params));
     log_table();
@@ -461,7 +470,8 @@ class Fit {
     for (size_t k = 0; k < s_.free.size(); ++k) {
       std::vector<double> v;
       for (const auto& e : evaluations_) v.push_back(e.params[k]);
-      r.add_column(t, s_.free[k].name, parameter_unit(style, s_.free[k].name), v);
+      r.add_column(t, s_.free[k].name, parameter_unit(potential_schema_, style, s_.free[k].name),
+                   v);
     }
     if (s_.isotherm) {
       for (size_t row = 0; row < s_.isotherm->pressure.size(); ++row) {
@@ -522,6 +532,7 @@ class Fit {
   EvaluationJournal journal_;
   FailurePenalty penalty_;
   std::vector<Evaluation> evaluations_;
+  const config::Param& potential_schema_;  // the pair styles' keys (their units)
   int budget_;
 };
 

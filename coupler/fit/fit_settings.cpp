@@ -99,8 +99,7 @@ Param judge_param() {
                               "dpd_isotherm and dpd_elastic, whose requests judge it)"));
 }
 
-const Param* style_field(const std::string& style, const std::string& name) {
-  static const Param schema = config::dpd_potential_schema();
+const Param* style_field(const Param& schema, const std::string& style, const std::string& name) {
   const auto it = schema.variants.find(style);
   if (it == schema.variants.end()) return nullptr;
   for (const auto& f : it->second) {
@@ -109,9 +108,8 @@ const Param* style_field(const std::string& style, const std::string& name) {
   return nullptr;
 }
 
-std::vector<std::string> style_parameters(const std::string& style) {
+std::vector<std::string> style_parameters(const Param& schema, const std::string& style) {
   std::vector<std::string> out;
-  const Param schema = config::dpd_potential_schema();
   const auto it = schema.variants.find(style);
   if (it == schema.variants.end()) return out;
   for (const auto& f : it->second) {
@@ -128,12 +126,14 @@ void check_free(const config::StageCheck& c, const YAML::Node& potential) {
     return;
   }
   if (!potential.IsMap() || !potential["style"]) return;  // {from: ...}: known at run time
+  const Param* schema = potential_schema(c.drivers);
+  if (!schema) return;  // no dpd_driver: the stage kind is refused already
   const std::string style = potential["style"].Scalar();
   for (const auto& kv : raw_free) {
     const std::string name = kv.first.Scalar();
     const std::string path = c.path + ".free." + name;
-    if (!style_field(style, name)) {
-      const auto names = style_parameters(style);
+    if (!style_field(*schema, style, name)) {
+      const auto names = style_parameters(*schema, style);
       c.validator.error(kv.first, path,
                         fmt::format("pair style '{}' has no parameter '{}' (it has: {}){}", style,
                                     name, fmt::join(names, ", "), config::suggest(name, names)));
@@ -326,6 +326,10 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
   f.judge.sampling = config::CrystalSampling::from_yaml(stage["judge"]);
   f.group_ranks = stage["group_ranks"].as<int>();
   return f;
+}
+
+const config::Param* potential_schema(const std::vector<config::DriverDescription>& drivers) {
+  return config::material_field(drivers, "dpd_mesoparticle", "potential");
 }
 
 }  // namespace pbms::coupler::fit

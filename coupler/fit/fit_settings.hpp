@@ -11,7 +11,7 @@
 
 #include "pbms/config/crystal_sampling.hpp"
 #include "pbms/config/param.hpp"
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 
 namespace pbms::coupler::fit {
 
@@ -73,6 +73,11 @@ struct FitSettings {
 };
 
 config::StageKindSpec fit_dpd_potential_spec();
+
+// The pair styles' schema (dpd_mesoparticle's `potential`, which dpd_driver
+// declares), or null when no driver declares it.
+[[nodiscard]] const config::Param* potential_schema(
+    const std::vector<config::DriverDescription>& drivers);
 
 // A sharp cutoff makes P(V) jump where a neighbour shell of the fcc crystal
 // crosses it. Throws pbms::Error naming the shell if `cutoff` lies within

@@ -4,7 +4,7 @@
 #include <limits>
 
 // GCC 12 warns inside its own AVX-512 intrinsics when Eigen vectorises with
-// them (GCC bug 105593, fixed in 13), as core/src/equation_of_state.cpp says.
+// them (GCC bug 105593, fixed in 13), as core/src/analysis/equation_of_state.cpp says.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/Dense>

@@ -37,6 +37,8 @@ class CouplerStageContext {
   // The stage's parameters, references to earlier results replaced.
   [[nodiscard]] const YAML::Node& params() const { return stage_.params; }
   [[nodiscard]] const YAML::Node& materials() const { return materials_; }
+  // What the drivers of this job declare (their stage and material kinds).
+  [[nodiscard]] const std::vector<config::DriverDescription>& drivers() const { return drivers_; }
   [[nodiscard]] uint64_t seed() const { return seed_; }
   [[nodiscard]] const std::filesystem::path& run_dir() const { return run_dir_; }
   // The run was started again with --resume: pick up what an interrupted

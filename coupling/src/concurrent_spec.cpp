@@ -61,6 +61,7 @@ Param continuum() {
                    "poisson_ratio_100)")
            .require()
            .above(-1)
+           .below(0.5)
            .referable(),
        Param::real("lattice_constant", Dimension::kLength,
                    "Lattice constant of the DPD crystal at the run's temperature (dpd_elastic "

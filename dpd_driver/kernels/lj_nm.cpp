@@ -6,6 +6,17 @@
 
 namespace pbms::dpd {
 
+std::vector<config::Param> LjNm::params() {
+  using config::Param;
+  using units::Dimension;
+  return {Param::real("e0", Dimension::kEnergy, "Well depth E0").require().above(0),
+          Param::real("r0", Dimension::kLength, "Equilibrium distance r0").require().above(0),
+          Param::real("n", Dimension::kNone, "Repulsive exponent").require().above(0),
+          Param::real("m", Dimension::kNone, "Attractive exponent").require().above(0),
+          pair_cutoff_param(),
+          pair_shift_param()};
+}
+
 std::unique_ptr<PairStyle> LjNm::create(const PairStyleParameters& params) {
   PairParameterReader read(kStyle, params);
   const double e0 = read.required_positive("e0");

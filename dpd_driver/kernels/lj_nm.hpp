@@ -40,6 +40,10 @@ class LjNm final : public PairStyle {
   // Parameters: e0 (eV, > 0), r0 (Å, > 0), n > m > 0, cutoff (Å, > 0),
   // shift (0 or 1, default 0).
   static std::unique_ptr<PairStyle> create(const PairStyleParameters& params);
+  // The keys of a potential map of this style, and what it computes.
+  static std::vector<config::Param> params();
+  static constexpr std::string_view kDoc =
+      "E0 / (n - m) [m (r0/r)^n - n (r0/r)^m], as LAMMPS pair_style nm/cut";
 
   LjNm(double e0, double r0, double n, double m, double cutoff, bool shift);
 

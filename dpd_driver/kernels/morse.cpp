@@ -9,6 +9,15 @@
 
 namespace pbms::dpd {
 
+std::vector<config::Param> Morse::params() {
+  using config::Param;
+  using units::Dimension;
+  return {Param::real("d0", Dimension::kEnergy, "Well depth D0").require().above(0),
+          Param::real("alpha", Dimension::kNone, "Width alpha, 1/Å").require().above(0),
+          Param::real("r0", Dimension::kLength, "Equilibrium distance r0").require().above(0),
+          pair_cutoff_param(), pair_shift_param()};
+}
+
 std::unique_ptr<PairStyle> Morse::create(const PairStyleParameters& params) {
   PairParameterReader read(kStyle, params);
   const double d0 = read.required_positive("d0");

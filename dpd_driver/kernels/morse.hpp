@@ -37,6 +37,10 @@ class Morse final : public PairStyle {
   // Parameters: d0 (eV, > 0), alpha (1/Å, > 0), r0 (Å, > 0), cutoff (Å, > 0),
   // shift (0 or 1, default 0).
   static std::unique_ptr<PairStyle> create(const PairStyleParameters& params);
+  // The keys of a potential map of this style, and what it computes.
+  static std::vector<config::Param> params();
+  static constexpr std::string_view kDoc =
+      "D0 [exp(-2 alpha (r - r0)) - 2 exp(-alpha (r - r0))], as LAMMPS pair_style morse";
 
   Morse(double d0, double alpha, double r0, double cutoff, bool shift);
 

@@ -17,4 +17,18 @@ PairResult PairStyle::compute(DpdParticles& particles, const HalfNeighbourList& 
   return compute_forces(particles, list, tally, friction);
 }
 
+config::Param pair_cutoff_param() {
+  return config::Param::real("cutoff", units::Dimension::kLength,
+                             "Beyond this distance the style contributes nothing")
+      .require()
+      .above(0);
+}
+
+config::Param pair_shift_param() {
+  return config::Param::boolean("shift",
+                                "Shift energies to zero at the cutoff (LAMMPS pair_modify shift "
+                                "yes)")
+      .def(false);
+}
+
 }  // namespace pbms::dpd

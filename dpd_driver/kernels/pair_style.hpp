@@ -13,6 +13,7 @@
 
 #include "kernels/dpd_particles.hpp"
 #include "kernels/half_neighbour_list.hpp"
+#include "pbms/config/param.hpp"
 
 namespace pbms::dpd {
 
@@ -71,5 +72,9 @@ class PairStyle {
 
   GhostForward ghost_forward_;
 };
+
+// The `cutoff` and `shift` keys most styles share.
+[[nodiscard]] config::Param pair_cutoff_param();
+[[nodiscard]] config::Param pair_shift_param();
 
 }  // namespace pbms::dpd

@@ -16,12 +16,23 @@ namespace {
 // Built-ins are listed here rather than self-registering from their own files:
 // static-initialiser registration is silently dropped when a static library's
 // object file has no other referenced symbol.
-std::map<std::string, PairStyleFactory, std::less<>>& factories() {
-  static std::map<std::string, PairStyleFactory, std::less<>> table = {
-      {std::string(Morse::kStyle), &Morse::create},
-      {std::string(LjNm::kStyle), &LjNm::create},
-      {std::string(PairTable::kStyle), &PairTable::create},
-      {std::string(SuttonChen::kStyle), &SuttonChen::create},
+struct Entry {
+  PairStyleFactory create;
+  std::vector<config::Param> params;
+  std::string doc;
+};
+
+template <class Style>
+std::pair<const std::string, Entry> entry() {
+  return {std::string(Style::kStyle), {&Style::create, Style::params(), std::string(Style::kDoc)}};
+}
+
+std::map<std::string, Entry, std::less<>>& factories() {
+  static std::map<std::string, Entry, std::less<>> table = {
+      entry<Morse>(),
+      entry<LjNm>(),
+      entry<PairTable>(),
+      entry<SuttonChen>(),
   };
   return table;
 }
@@ -37,7 +48,7 @@ std::unique_ptr<PairStyle> PairStyleRegistry::create(std::string_view style,
     for (const auto& name : names()) known += (known.empty() ? "" : ", ") + name;
     throw Error("unknown pair style '" + std::string(style) + "'; known styles: " + known);
   }
-  return it->second(params);
+  return it->second.create(params);
 }
 
 std::vector<std::string> PairStyleRegistry::names() {
@@ -50,10 +61,22 @@ bool PairStyleRegistry::contains(std::string_view style) {
   return factories().find(style) != factories().end();
 }
 
-void PairStyleRegistry::add(std::string style, PairStyleFactory factory) {
+config::Param PairStyleRegistry::schema() {
+  config::Param potential = config::Param::map(
+      "potential",
+      {config::Param::choice("style", names(), "Conservative force style of the DPD engine")
+           .require()},
+      "Conservative interaction of the mesoparticles; a potential file holds this same map");
+  potential.discriminated_by("style");
+  for (const auto& [name, e] : factories()) potential.variant(name, e.params, e.doc);
+  return potential;
+}
+
+void PairStyleRegistry::add(std::string style, PairStyleFactory factory,
+                            std::vector<config::Param> params, std::string doc) {
   auto& table = factories();
   if (table.count(style) != 0) throw Error("pair style '" + style + "' is already registered");
-  table.emplace(std::move(style), std::move(factory));
+  table.emplace(std::move(style), Entry{std::move(factory), std::move(params), std::move(doc)});
 }
 
 }  // namespace pbms::dpd

@@ -25,9 +25,14 @@ class PairStyleRegistry {
   // Sorted.
   [[nodiscard]] static std::vector<std::string> names();
   [[nodiscard]] static bool contains(std::string_view style);
+  // The `potential` map of a dpd_mesoparticle material (also the format of
+  // a potential file): `style` and each style's own keys, as the styles
+  // declare them.
+  [[nodiscard]] static config::Param schema();
   // Makes a style known beyond the built-in ones. Throws pbms::Error if the
   // name is taken. Not thread-safe: call before any run.
-  static void add(std::string style, PairStyleFactory factory);
+  static void add(std::string style, PairStyleFactory factory, std::vector<config::Param> params,
+                  std::string doc);
 };
 
 }  // namespace pbms::dpd

@@ -41,6 +41,13 @@ PairTableRows read_pair_table(const std::string& path) {
   return rows;
 }
 
+std::vector<config::Param> PairTable::params() {
+  using config::Param;
+  using units::Dimension;
+  return {Param::file("file", "Rows r (Å), U (eV), F = -dU/dr (eV/Å)").require(),
+          Param::real("cutoff", Dimension::kLength, "Cutoff; default the last row").above(0)};
+}
+
 std::unique_ptr<PairStyle> PairTable::create(const PairStyleParameters& params) {
   PairParameterReader read(kStyle, params);
   const std::string file = read.required_text("file");

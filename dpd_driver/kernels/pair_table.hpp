@@ -57,6 +57,9 @@ class PairTable final : public PairStyle {
   // Parameters: text `file` (the table), number `cutoff` (Å, optional,
   // default the last r of the table, at most that).
   static std::unique_ptr<PairStyle> create(const PairStyleParameters& params);
+  // The keys of a potential map of this style, and what it computes.
+  static std::vector<config::Param> params();
+  static constexpr std::string_view kDoc = "Tabulated pair potential, cubic Hermite between rows";
 
   PairTable(PairTableRows rows, double cutoff);
 

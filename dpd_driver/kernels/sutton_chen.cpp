@@ -6,6 +6,17 @@
 
 namespace pbms::dpd {
 
+std::vector<config::Param> SuttonChen::params() {
+  using config::Param;
+  using units::Dimension;
+  return {Param::real("epsilon", Dimension::kEnergy, "Energy scale").require().above(0),
+          Param::real("a", Dimension::kLength, "Length scale").require().above(0),
+          Param::real("n", Dimension::kNone, "Pair repulsion exponent").require().above(0),
+          Param::real("m", Dimension::kNone, "Density exponent").require().above(0),
+          Param::real("c", Dimension::kNone, "Embedding weight").require().above(0),
+          pair_cutoff_param()};
+}
+
 std::unique_ptr<PairStyle> SuttonChen::create(const PairStyleParameters& params) {
   PairParameterReader read(kStyle, params);
   const double epsilon = read.required_positive("epsilon");

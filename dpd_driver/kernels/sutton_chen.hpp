@@ -47,6 +47,10 @@ class SuttonChen final : public PairStyle {
   // Parameters: epsilon (eV, > 0), a (Å, > 0), n > 0, m > 0, c (> 0),
   // cutoff (Å, > 0).
   static std::unique_ptr<PairStyle> create(const PairStyleParameters& params);
+  // The keys of a potential map of this style, and what it computes.
+  static std::vector<config::Param> params();
+  static constexpr std::string_view kDoc =
+      "eps [sum (a/r)^n - c sum_i sqrt(rho_i)], rho_i = sum_j (a/r_ij)^m";
 
   SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff);
 

@@ -1,5 +1,6 @@
 #include "dpd_stage_params.hpp"
 
+#include "kernels/pair_style_registry.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 
 namespace pbms::dpd {
@@ -212,6 +213,29 @@ DpdProbeSpec probe_from_yaml(const YAML::Node& p) {
 
 int axis_index(const std::string& axis) {
   return axis == "x" ? 0 : axis == "y" ? 1 : 2;
+}
+
+config::MaterialKindSpec MesoparticleMaterial::spec() {
+  return {
+      "dpd_mesoparticle",
+      "DPD: a coarse-grained particle (mass, crystal) and its conservative potential",
+      {
+          Param::real("mass", Dimension::kMass, "Mass of one mesoparticle").require().above(0),
+          Param::real("lattice_constant", Dimension::kLength,
+                      "Cubic cell edge of the mesoparticle fcc crystal")
+              .require()
+              .above(0),
+          Param::integer("atoms_per_particle",
+                         "Atoms one mesoparticle stands for; volumes per atom (isotherms, the MD "
+                         "fit) divide by it")
+              .def(8)
+              .above(0),
+          PairStyleRegistry::schema().referable(),
+          Param::file("potential_file",
+                      "A YAML file holding the `potential` map (what the MD->DPD fit writes); "
+                      "give this or `potential`")
+              .holding("potential"),
+      }};
 }
 
 MesoparticleMaterial MesoparticleMaterial::from_yaml(const YAML::Node& material) {

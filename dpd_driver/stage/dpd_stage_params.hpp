@@ -16,6 +16,7 @@
 
 #include "kernels/orthogonal_box.hpp"
 #include "pbms/config/param.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/geometry/region.hpp"
 
 namespace pbms::dpd {
@@ -30,6 +31,9 @@ struct MesoparticleMaterial {
   YAML::Node potential;           // the pair style's map (pair_style_from_yaml)
   double atoms_per_particle = 8;  // volumes per atom (isotherms, the fit) divide by it
 
+  // The dpd_mesoparticle material kind: these keys, and the potential's
+  // (each pair style's own, PairStyleRegistry::schema).
+  static config::MaterialKindSpec spec();
   static MesoparticleMaterial from_yaml(const YAML::Node& material);
 };
 

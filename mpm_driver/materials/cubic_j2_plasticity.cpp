@@ -38,6 +38,27 @@ CubicJ2Plasticity::CubicJ2Plasticity(CubicElasticity elasticity, double yield_st
   }
 }
 
+config::MaterialKindSpec CubicJ2Plasticity::spec() {
+  using config::Param;
+  using units::Dimension;
+  const auto modulus = [](const char* name, const char* doc, const ParameterRange& range) {
+    return ranged(Param::real(name, Dimension::kPressure, doc).require().referable(), range);
+  };
+  return {std::string(kStyle),
+          "MPM: von Mises plasticity on a cubic elastic crystal whose cube axes are x, y, z "
+          "(cutting-plane return)",
+          {density_param(),
+           modulus("c11", "Cubic elastic constant C11, cube axes along x, y, z", kModulusRange),
+           modulus("c12", "Cubic elastic constant C12", kAnyFiniteRange),
+           modulus("c44", "Cubic elastic constant C44", kModulusRange),
+           modulus("yield_stress", "Initial yield stress", kYieldStressRange),
+           ranged(Param::real("hardening_modulus", Dimension::kPressure,
+                              "Linear isotropic hardening modulus H")
+                      .def(0.0)
+                      .referable(),
+                  kHardeningModulusRange)}};
+}
+
 std::unique_ptr<grid::Material> CubicJ2Plasticity::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   CubicElasticity c;

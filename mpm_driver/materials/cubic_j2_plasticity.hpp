@@ -15,6 +15,7 @@
 #include "cubic_elasticity.hpp"
 #include "linear_hardening.hpp"
 #include "material_parameters.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
@@ -33,6 +34,8 @@ class CubicJ2Plasticity final : public grid::Material {
   // Parameters: c11, c12, c44, yield_stress, hardening_modulus (optional,
   // default 0: perfectly plastic).
   static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
+  // Its material kind: the keys create() reads, with the ranges it accepts.
+  static config::MaterialKindSpec spec();
 
   [[nodiscard]] std::string_view style() const override { return style_; }
   void update(const grid::Mat3& velocity_gradient, double dt,

@@ -25,6 +25,15 @@ IdealGas::IdealGas(double gamma) : gamma_(gamma) {
   check_parameter(kStyle, "gamma", gamma, kGammaRange);
 }
 
+config::MaterialKindSpec IdealGas::spec() {
+  return {std::string(kStyle),
+          "MPM: ideal gas P = (gamma - 1) rho e, e from the work of compression",
+          {density_param(),
+           ranged(config::Param::real("gamma", units::Dimension::kNone, "Ratio of specific heats")
+                      .def(kDefaultGamma),
+                  kGammaRange)}};
+}
+
 std::unique_ptr<grid::Material> IdealGas::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   const double gamma = reader.optional("gamma", kDefaultGamma, kGammaRange);

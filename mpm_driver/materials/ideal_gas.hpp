@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "material_parameters.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
@@ -22,6 +23,8 @@ class IdealGas final : public grid::Material {
 
   // Parameters: gamma (optional, default 1.4), the ratio of specific heats.
   static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
+  // Its material kind: the keys create() reads, with the ranges it accepts.
+  static config::MaterialKindSpec spec();
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
 

@@ -10,6 +10,7 @@
 #include "isotropic_elasticity.hpp"
 #include "linear_hardening.hpp"
 #include "material_parameters.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
@@ -29,6 +30,8 @@ class J2Plasticity final : public grid::Material {
   // cubic crystal with cube axes along x, y, z whose [100] pull has that E
   // and nu (CubicElasticity::from_100), run by CubicJ2Plasticity.
   static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
+  // Its material kind: the keys create() reads, with the ranges it accepts.
+  static config::MaterialKindSpec spec();
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
   void update(const grid::Mat3& velocity_gradient, double dt,

@@ -21,6 +21,22 @@ LinearElastic::LinearElastic(double youngs_modulus, double poisson_ratio) {
       IsotropicElasticity::from_youngs_modulus_and_poisson_ratio(youngs_modulus, poisson_ratio);
 }
 
+config::MaterialKindSpec LinearElastic::spec() {
+  using config::Param;
+  using units::Dimension;
+  return {
+      std::string(kStyle),
+      "MPM: isotropic linear elasticity, small strain with a Jaumann rate",
+      {density_param(),
+       ranged(Param::real("youngs_modulus", Dimension::kPressure, "Young's modulus E")
+                  .require()
+                  .referable(),
+              kYoungsModulusRange),
+       ranged(
+           Param::real("poisson_ratio", Dimension::kNone, "Poisson's ratio").def(0.3).referable(),
+           kPoissonRatioRange)}};
+}
+
 std::unique_ptr<grid::Material> LinearElastic::create(const MaterialParameters& params) {
   ParameterReader reader(kStyle, params);
   const double e = reader.required("youngs_modulus", kYoungsModulusRange);

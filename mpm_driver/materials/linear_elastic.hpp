@@ -8,6 +8,7 @@
 
 #include "isotropic_elasticity.hpp"
 #include "material_parameters.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
@@ -21,6 +22,8 @@ class LinearElastic final : public grid::Material {
 
   // Parameters: youngs_modulus, poisson_ratio.
   static std::unique_ptr<grid::Material> create(const MaterialParameters& params);
+  // Its material kind: the keys create() reads, with the ranges it accepts.
+  static config::MaterialKindSpec spec();
 
   [[nodiscard]] std::string_view style() const override { return kStyle; }
   void update(const grid::Mat3& velocity_gradient, double dt,

@@ -25,6 +25,33 @@ std::string ParameterRange::describe(std::string_view name) const {
   return out.str();
 }
 
+config::Param ranged(config::Param param, const ParameterRange& range) {
+  if (std::isfinite(range.lower)) {
+    if (range.lower_inclusive) {
+      param.at_least(range.lower);
+    } else {
+      param.above(range.lower);
+    }
+  }
+  if (std::isfinite(range.upper)) {
+    if (range.upper_inclusive) {
+      param.at_most(range.upper);
+    } else {
+      param.below(range.upper);
+    }
+  }
+  return param;
+}
+
+config::Param density_param() {
+  // Metal units (g/cm^3 written, g/mol/Å^3 inside) unless a stage runs in
+  // `units: consistent`, where the numbers are of one consistent system.
+  return config::Param::real("density", units::Dimension::kDensity, "Initial mass density")
+      .require()
+      .above(0)
+      .referable();
+}
+
 void check_parameter(std::string_view style, std::string_view name, double value,
                      const ParameterRange& range) {
   if (range.contains(value) && std::isfinite(value)) return;

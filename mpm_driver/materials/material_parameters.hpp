@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "pbms/config/param.hpp"
+
 namespace pbms::mpm {
 
 // Values in the units the caller computes in; the registry does no conversion.
@@ -33,6 +35,14 @@ struct ParameterRange {
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
 };
+
+// A style's key with this range as its bounds: the workflow's check (the
+// coupler, before any rank starts) and the style's own (ParameterReader,
+// check_parameter) come from one ParameterRange.
+[[nodiscard]] config::Param ranged(config::Param param, const ParameterRange& range);
+// The initial mass density every MPM material kind takes (the body's, not
+// the constitutive model's).
+[[nodiscard]] config::Param density_param();
 
 // Throws pbms::Error unless range contains value.
 void check_parameter(std::string_view style, std::string_view name, double value,

@@ -53,6 +53,10 @@ void MaterialRegistry::add(std::string style, MaterialFactory factory) {
   table.emplace(std::move(style), std::move(factory));
 }
 
+std::vector<config::MaterialKindSpec> MaterialRegistry::specs() {
+  return {LinearElastic::spec(), J2Plasticity::spec(), CubicJ2Plasticity::spec(), IdealGas::spec()};
+}
+
 std::vector<std::string> MaterialRegistry::styles() {
   std::vector<std::string> names;
   for (const auto& [name, factory] : factories()) names.push_back(name);

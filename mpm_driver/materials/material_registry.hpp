@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "material_parameters.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/grid/material.hpp"
 
 namespace pbms::mpm {
@@ -30,6 +31,8 @@ class MaterialRegistry {
 
   // Known style names, sorted.
   static std::vector<std::string> styles();
+  // The built-in styles' material kinds, for a driver to publish.
+  static std::vector<config::MaterialKindSpec> specs();
 };
 
 }  // namespace pbms::mpm

@@ -48,7 +48,7 @@ for i in (0, 3):
               f"{ours:.15g}, plain lmp on {ranks} ranks {ref:.15g}, relative difference {rel:.1e} "
               f"(tolerance 1e-9)")
 
-# Birch-Murnaghan, as core/src/equation_of_state.cpp, fitted independently.
+# Birch-Murnaghan, as core/src/analysis/equation_of_state.cpp, fitted independently.
 def bm(v, v0, b0, bp):
     x = (v0 / v) ** (2.0 / 3.0)
     return 1.5 * b0 * (x ** 3.5 - x ** 2.5) * (1 + 0.75 * (bp - 4) * (x - 1))

@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "kernels/pair_style.hpp"
+#include "kernels/pair_style_registry.hpp"
 #include "pbms/config/validator.hpp"
 #include "pbms/config/workflow.hpp"
 #include "pbms/error.hpp"
@@ -27,7 +28,7 @@ inline YAML::Node cu_cg_morse_yaml() {
   config::Validator validator(kCuCgMorseFile);
   YAML::Node potential;
   try {
-    potential = validator.check(config::dpd_potential_schema(), YAML::LoadFile(kCuCgMorseFile),
+    potential = validator.check(dpd::PairStyleRegistry::schema(), YAML::LoadFile(kCuCgMorseFile),
                                 "potential");
   } catch (const YAML::Exception& e) {
     throw Error(kCuCgMorseFile + ": " + e.what());

@@ -370,5 +370,5 @@ TEST(DpdPairStyleRegistry, RefusesUnknownStylesAndBadParameters) {
   PairStyleParameters lj;
   lj.numbers = {{"e0", 0.4}, {"r0", 5.11}, {"n", 6.0}, {"m", 12.0}, {"cutoff", 10.0}};
   EXPECT_THROW(PairStyleRegistry::create("lj_nm", lj), pbms::Error);  // n < m
-  EXPECT_THROW(PairStyleRegistry::add("morse", &Morse::create), pbms::Error);
+  EXPECT_THROW(PairStyleRegistry::add("morse", &Morse::create, Morse::params(), ""), pbms::Error);
 }

@@ -15,6 +15,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "materials/cubic_j2_plasticity.hpp"
@@ -684,4 +685,46 @@ TEST(CubicJ2Plasticity, RefusesAnUnstableCrystal) {
                                    {{"c11", 100}, {"c12", 120}, {"c44", 50}, {"yield_stress", 1}});
   EXPECT_NE(msg.find("not a stable cubic crystal"), std::string::npos) << msg;
   EXPECT_NE(msg.find("c11 > c12"), std::string::npos) << msg;
+}
+
+// A material kind's published bounds are the ones its kernel enforces: every
+// real key of every built-in style is refused by create() just outside its
+// schema range and on an exclusive bound, and accepted just inside.
+TEST(MaterialKinds, SchemaBoundsAreTheKernelsOwn) {
+  for (const auto& kind : MaterialRegistry::specs()) {
+    MaterialParameters valid;
+    for (const auto& p : kind.params) {
+      if (p.name == "density") continue;
+      if (p.default_value) valid[p.name] = p.default_value->as<double>();
+    }
+    if (kind.kind == "linear_elastic" || kind.kind == "j2_plasticity") {
+      valid["youngs_modulus"] = 1e6;
+    }
+    if (kind.kind == "j2_plasticity" || kind.kind == "cubic_j2_plasticity") {
+      valid["yield_stress"] = 1e3;
+    }
+    if (kind.kind == "cubic_j2_plasticity") {
+      valid["c11"] = 1.7e6;
+      valid["c12"] = 1.2e6;
+      valid["c44"] = 0.8e6;
+    }
+    ASSERT_NO_THROW((void)MaterialRegistry::create(kind.kind, valid)) << kind.kind;
+    for (const auto& p : kind.params) {
+      if (p.name == "density") continue;
+      for (const auto& [bound, exclusive, outward] :
+           {std::tuple{p.min, p.min_exclusive, -1.0}, std::tuple{p.max, p.max_exclusive, 1.0}}) {
+        if (!bound) continue;
+        MaterialParameters bad = valid;
+        const double step = 1e-6 * std::max(1.0, std::abs(*bound));
+        bad[p.name] = *bound + outward * step;
+        EXPECT_THROW((void)MaterialRegistry::create(kind.kind, bad), pbms::Error)
+            << kind.kind << "." << p.name << " just outside " << *bound;
+        if (exclusive) {
+          bad[p.name] = *bound;
+          EXPECT_THROW((void)MaterialRegistry::create(kind.kind, bad), pbms::Error)
+              << kind.kind << "." << p.name << " on its exclusive bound";
+        }
+      }
+    }
+  }
 }

@@ -7,6 +7,8 @@
 #include <fstream>
 
 #include "capabilities.hpp"
+#include "eam_material_spec.hpp"
+#include "materials/linear_elastic.hpp"
 #include "md_elastic.hpp"
 #include "md_isotherm.hpp"
 #include "md_tension.hpp"
@@ -24,6 +26,7 @@ std::vector<DriverDescription> md_only() {
   d.protocol_version = 1;
   d.stage_kinds = {pbms::md::IsothermStage::spec(), pbms::md::ElasticStage::spec(),
                    pbms::md::TensionStage::spec()};
+  d.material_kinds = pbms::md::eam_material_kinds();
   return {d};
 }
 
@@ -151,6 +154,7 @@ std::vector<DriverDescription> md_and_table_taker() {
   taker.params = {Param::table("targets", "An isotherm"),
                   Param::identifier("material", "A continuum material").material()};
   drivers[0].stage_kinds.push_back(taker);
+  drivers[0].material_kinds.push_back(pbms::mpm::LinearElastic::spec());
   return drivers;
 }
 

@@ -13,7 +13,7 @@
 #include "pbms/analysis/gauge_section.hpp"
 #include "pbms/analysis/tension_curve.hpp"
 #include "pbms/config/param.hpp"
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::analysis {

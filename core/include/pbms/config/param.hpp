@@ -42,7 +42,7 @@ struct Param {
   bool required = false;
   std::optional<YAML::Node> default_value;
   std::optional<double> min, max;
-  bool min_exclusive = false;
+  bool min_exclusive = false, max_exclusive = false;
   std::optional<size_t> min_length, max_length;
   std::vector<std::string> choices;
   bool allow_reference = false;  // may be {from: <stage>.<output>}
@@ -51,6 +51,10 @@ struct Param {
   // kName: the value names an earlier stage of one of these kinds.
   std::vector<std::string> stage_kinds;
   bool one_key = false;  // kMap: exactly one of its keys is given
+  // kFile: the file holds, in the same format, the map of the sibling key
+  // named here, which may be given inline instead (a material's
+  // potential_file and potential): one of the two is required.
+  std::string holds;
   // Given only when the sibling key `first` resolves to `second` (empty
   // `first`: always allowed), e.g. md_tension's initial_strain with
   // lateral: periodic. Travels in --describe, so the coupler refuses it
@@ -101,6 +105,16 @@ struct Param {
   }
   Param& at_most(double v) {
     max = v;
+    max_exclusive = false;
+    return *this;
+  }
+  Param& below(double v) {
+    max = v;
+    max_exclusive = true;
+    return *this;
+  }
+  Param& holding(std::string sibling) {
+    holds = std::move(sibling);
     return *this;
   }
   Param& length(size_t lo, size_t hi) {

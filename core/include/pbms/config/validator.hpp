@@ -10,7 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "pbms/config/param.hpp"
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/error.hpp"
 
 namespace pbms::config {

@@ -13,7 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "pbms/config/param.hpp"
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/error.hpp"
 
 namespace pbms::config {
@@ -53,10 +53,8 @@ LoadResult load_workflow(const std::string& path, const std::vector<DriverDescri
 
 // The schema of the workflow file for the given drivers (docs, validation).
 Param workflow_schema(const std::vector<DriverDescription>& drivers);
-Param materials_schema();
-// The `potential` map of a dpd_mesoparticle material, also the format of a
-// potential file.
-Param dpd_potential_schema();
+// `materials:`, each entry of a kind some driver declares.
+Param materials_schema(const std::vector<DriverDescription>& drivers);
 
 // Applies `--ranks md=2` style overrides. Returns an error message, or empty.
 std::string apply_rank_override(Workflow& wf, const std::vector<DriverDescription>& drivers,

@@ -16,7 +16,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms {
@@ -97,8 +97,15 @@ class StageRegistry {
   [[nodiscard]] std::unique_ptr<StageKind> create(const std::string& kind) const;
   [[nodiscard]] std::vector<config::StageKindSpec> specs() const;
 
+  // A material kind the driver's stages take, published with the stages.
+  void add_material(config::MaterialKindSpec spec) { materials_.push_back(std::move(spec)); }
+  [[nodiscard]] const std::vector<config::MaterialKindSpec>& materials() const {
+    return materials_;
+  }
+
  private:
   std::map<std::string, std::pair<config::StageKindSpec, Factory>> entries_;
+  std::vector<config::MaterialKindSpec> materials_;
 };
 
 struct DriverInfo {

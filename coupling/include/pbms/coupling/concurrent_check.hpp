@@ -6,7 +6,7 @@
 // stage is refused before any rank starts.
 #pragma once
 
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 
 namespace pbms::coupling {
 

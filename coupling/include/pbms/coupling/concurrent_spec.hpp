@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 
 namespace pbms::coupling {
 

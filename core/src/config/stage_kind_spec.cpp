@@ -1,4 +1,4 @@
-#include "pbms/config/stage_kind.hpp"
+#include "pbms/config/stage_kind_spec.hpp"
 
 namespace pbms::config {
 namespace {
@@ -90,6 +90,26 @@ StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
   return s;
 }
 
+const MaterialKindSpec* find_material_kind(const std::vector<DriverDescription>& drivers,
+                                           std::string_view kind) {
+  for (const auto& d : drivers) {
+    for (const auto& m : d.material_kinds) {
+      if (m.kind == kind) return &m;
+    }
+  }
+  return nullptr;
+}
+
+const Param* material_field(const std::vector<DriverDescription>& drivers, std::string_view kind,
+                            std::string_view name) {
+  const MaterialKindSpec* m = find_material_kind(drivers, kind);
+  if (!m) return nullptr;
+  for (const auto& p : m->params) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
 YAML::Node to_yaml(const DriverDescription& d) {
   YAML::Node n;
   n["program"] = d.program;
@@ -98,6 +118,14 @@ YAML::Node to_yaml(const DriverDescription& d) {
   for (const auto& [k, v] : d.software) n["software"][k] = v;
   n["stage_kinds"] = YAML::Node(YAML::NodeType::Sequence);
   for (const auto& s : d.stage_kinds) n["stage_kinds"].push_back(to_yaml(s));
+  for (const auto& m : d.material_kinds) {
+    YAML::Node mn;
+    mn["kind"] = m.kind;
+    mn["doc"] = m.doc;
+    mn["params"] = YAML::Node(YAML::NodeType::Sequence);
+    for (const auto& p : m.params) mn["params"].push_back(to_yaml(p));
+    n["material_kinds"].push_back(mn);
+  }
   return n;
 }
 
@@ -110,6 +138,11 @@ DriverDescription driver_from_yaml(const YAML::Node& n) {
     d.software.emplace_back(kv.first.as<std::string>(), kv.second.as<std::string>());
   }
   for (const auto& s : n["stage_kinds"]) d.stage_kinds.push_back(stage_kind_from_yaml(s));
+  for (const auto& mn : n["material_kinds"]) {
+    MaterialKindSpec m{mn["kind"].as<std::string>(), mn["doc"].as<std::string>(""), {}};
+    for (const auto& p : mn["params"]) m.params.push_back(param_from_yaml(p));
+    d.material_kinds.push_back(std::move(m));
+  }
   return d;
 }
 

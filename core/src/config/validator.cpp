@@ -160,8 +160,10 @@ bool Validator::check_range(const Param& p, double v, const YAML::Node& node,
                       p.min_exclusive ? ">" : ">=", *p.min, u));
     return false;
   }
-  if (p.max && !(v <= *p.max)) {
-    error(node, path, fmt::format("value {}{} is out of range: must be <= {}{}", v, u, *p.max, u));
+  if (p.max && (p.max_exclusive ? !(v < *p.max) : !(v <= *p.max))) {
+    error(node, path,
+          fmt::format("value {}{} is out of range: must be {} {}{}", v, u,
+                      p.max_exclusive ? "<" : "<=", *p.max, u));
     return false;
   }
   return true;

@@ -165,7 +165,11 @@ YAML::Node to_yaml(const Param& p) {
     n["min"] = *p.min;
     if (p.min_exclusive) n["min_exclusive"] = true;
   }
-  if (p.max) n["max"] = *p.max;
+  if (p.max) {
+    n["max"] = *p.max;
+    if (p.max_exclusive) n["max_exclusive"] = true;
+  }
+  if (!p.holds.empty()) n["holds"] = p.holds;
   if (p.min_length) n["min_length"] = *p.min_length;
   if (p.max_length) n["max_length"] = *p.max_length;
   if (!p.choices.empty()) n["choices"] = p.choices;
@@ -214,6 +218,8 @@ Param param_from_yaml(const YAML::Node& n) {
   if (n["min"]) p.min = n["min"].as<double>();
   p.min_exclusive = n["min_exclusive"] && n["min_exclusive"].as<bool>();
   if (n["max"]) p.max = n["max"].as<double>();
+  p.max_exclusive = n["max_exclusive"] && n["max_exclusive"].as<bool>();
+  if (n["holds"]) p.holds = n["holds"].as<std::string>();
   if (n["min_length"]) p.min_length = n["min_length"].as<size_t>();
   if (n["max_length"]) p.max_length = n["max_length"].as<size_t>();
   if (n["choices"]) p.choices = n["choices"].as<std::vector<std::string>>();

@@ -68,6 +68,16 @@ struct StageKindSpec {
   [[nodiscard]] const OutputSpec* output(std::string_view name) const;
 };
 
+// A kind of entry under `materials:` that a driver's stages take (eam_alloy,
+// linear_elastic, dpd_mesoparticle): declared beside the code that reads
+// it, and published through --describe, so that the coupler validates a
+// material without knowing any driver's styles.
+struct MaterialKindSpec {
+  std::string kind;
+  std::string doc;
+  std::vector<Param> params;  // besides `kind`
+};
+
 // What `<driver> --describe` prints and the handshake carries.
 inline constexpr const char* kCouplerProgram = "coupler";
 
@@ -76,10 +86,19 @@ struct DriverDescription {
   std::string short_name;  // "md": the key in `launch:` and `--ranks md=2`
   int protocol_version = 0;
   std::vector<StageKindSpec> stage_kinds;
+  std::vector<MaterialKindSpec> material_kinds;
   std::vector<std::pair<std::string, std::string>> software;  // name -> version
 
   [[nodiscard]] const StageKindSpec* stage_kind(std::string_view kind) const;
 };
+
+// The material kind some driver declares, or null.
+[[nodiscard]] const MaterialKindSpec* find_material_kind(
+    const std::vector<DriverDescription>& drivers, std::string_view kind);
+// Field `name` of a material kind (e.g. dpd_mesoparticle's `potential`),
+// or null.
+[[nodiscard]] const Param* material_field(const std::vector<DriverDescription>& drivers,
+                                          std::string_view kind, std::string_view name);
 
 YAML::Node to_yaml(const StageKindSpec& s);
 StageKindSpec stage_kind_from_yaml(const YAML::Node& n);

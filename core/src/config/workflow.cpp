@@ -80,6 +80,22 @@ std::vector<std::string> Workflow::programs() const {
   return out;
 }
 
+Param materials_schema(const std::vector<DriverDescription>& drivers) {
+  std::vector<std::string> kinds;
+  for (const auto& d : drivers) {
+    for (const auto& m : d.material_kinds) kinds.push_back(m.kind);
+  }
+  Param material = Param::map(
+      "material",
+      {Param::choice("kind", kinds, "Interaction model or constitutive model").require()},
+      "One material");
+  material.discriminated_by("kind");
+  for (const auto& d : drivers) {
+    for (const auto& m : d.material_kinds) material.variant(m.kind, m.params, m.doc);
+  }
+  return Param::map_of("materials", material, "Named materials that stages refer to");
+}
+
 Param workflow_schema(const std::vector<DriverDescription>& drivers) {
   using units::Dimension;
   std::vector<Param> launch_fields;
@@ -114,7 +130,7 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
               .require(),
           Param::map("launch", launch_fields, "MPI ranks per driver program")
               .def(YAML::Node(YAML::NodeType::Map)),
-          materials_schema().def(YAML::Node(YAML::NodeType::Map)),
+          materials_schema(drivers).def(YAML::Node(YAML::NodeType::Map)),
           Param::list_of("stages", stage, "Stages, run in order").require().length(1, 1000),
       },
       "A PBMS workflow");
@@ -136,7 +152,7 @@ class WorkflowLoader {
     check_run_directory();
     collect_stages();
     check_references();
-    read_potential_files();
+    read_held_files();
     if (v_.errors().empty() && file_errors_.empty()) run_stage_checks();
     result.errors = v_.errors();
     result.errors.insert(result.errors.end(), file_errors_.begin(), file_errors_.end());
@@ -323,41 +339,52 @@ class WorkflowLoader {
     return target_idx;
   }
 
-  // A DPD mesoparticle's potential is inline or in a file of the same
-  // format; a file is checked here, with its own line numbers.
-  void read_potential_files() {
+  // A material key may be given inline or as a file of the same format
+  // (Param::holds: a dpd_mesoparticle's potential and potential_file); a
+  // file is checked here, with its own line numbers, and takes the key's
+  // place in the resolved materials.
+  void read_held_files() {
     const YAML::Node materials = root_["materials"];
     if (!materials.IsMap()) return;
     for (const auto& entry : materials) {
       const YAML::Node m = entry.second;
-      if (!m.IsMap() || !m["kind"] || !m["kind"].IsScalar() ||
-          m["kind"].Scalar() != "dpd_mesoparticle") {
-        continue;
+      if (!m.IsMap() || !m["kind"] || !m["kind"].IsScalar()) continue;
+      const MaterialKindSpec* kind = find_material_kind(drivers_, m["kind"].Scalar());
+      if (!kind) continue;  // already reported
+      for (const Param& file : kind->params) {
+        if (!file.holds.empty()) read_held_file(entry.first.as<std::string>(), m, *kind, file);
       }
-      read_potential_file(entry.first.as<std::string>(), m);
     }
   }
 
-  void read_potential_file(const std::string& name, const YAML::Node& m) {
+  void read_held_file(const std::string& name, const YAML::Node& m, const MaterialKindSpec& kind,
+                      const Param& file_param) {
+    const std::string& key = file_param.holds;
+    const std::string& file_key = file_param.name;
     const std::string mp = "materials." + name;
-    if (m["potential"] && m["potential_file"]) {
-      v_.error(m["potential_file"], mp + ".potential_file",
-               "give `potential` or `potential_file`, not both");
+    if (m[key] && m[file_key]) {
+      v_.error(m[file_key], mp + "." + file_key,
+               fmt::format("give `{}` or `{}`, not both", key, file_key));
       return;
     }
-    if (!m["potential"] && !m["potential_file"]) {
-      v_.error(m, mp, "a dpd_mesoparticle needs `potential` (inline) or `potential_file`");
+    if (!m[key] && !m[file_key]) {
+      v_.error(m, mp, fmt::format("a {} needs `{}` (inline) or `{}`", kind.kind, key, file_key));
       return;
     }
-    if (!m["potential_file"]) return;
-    const YAML::Node file_node = resolved_["materials"][name]["potential_file"];
+    if (!m[file_key]) return;
+    const YAML::Node file_node = resolved_["materials"][name][file_key];
     if (!file_node || !file_node.IsScalar()) return;  // already reported
     const std::string file = file_node.Scalar();
+    const Param* held = nullptr;
+    for (const Param& p : kind.params) {
+      if (p.name == key) held = &p;
+    }
+    if (!held) return;
     Validator fv(file);
-    const std::optional<YAML::Node> doc = load_yaml_source(file, fv, "a potential file");
+    const std::optional<YAML::Node> doc = load_yaml_source(file, fv, fmt::format("a {} file", key));
     if (doc) {
-      YAML::Node checked = fv.check(dpd_potential_schema(), *doc, "potential");
-      if (fv.errors().empty()) resolved_["materials"][name]["potential"] = checked;
+      YAML::Node checked = fv.check(*held, *doc, key);
+      if (fv.errors().empty()) resolved_["materials"][name][key] = checked;
     }
     file_errors_.insert(file_errors_.end(), fv.errors().begin(), fv.errors().end());
   }

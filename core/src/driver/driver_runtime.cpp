@@ -392,6 +392,7 @@ int run_driver(int argc, char** argv, const DriverInfo& info, const StageRegistr
       d.protocol_version = protocol::kProtocolVersion;
       d.software = info.software;
       d.stage_kinds = registry.specs();
+      d.material_kinds = registry.materials();
       YAML::Emitter out;
       out << to_yaml(d);
       std::cout << out.c_str() << "\n";
@@ -406,6 +407,9 @@ int run_driver(int argc, char** argv, const DriverInfo& info, const StageRegistr
           info.program);
       for (const auto& s : registry.specs())
         std::cout << fmt::format("  {:16} {}\n", s.kind, s.doc);
+      if (!registry.materials().empty()) std::cout << "\nMaterial kinds:\n";
+      for (const auto& m : registry.materials())
+        std::cout << fmt::format("  {:16} {}\n", m.kind, m.doc);
       return 0;
     }
   }

@@ -1,0 +1,14 @@
+// The material kinds md_driver's stages take: embedded-atom potentials of a
+// LAMMPS setfl file (eam_alloy, eam_fs). Their keys are read into MdMaterial
+// (md_setup.hpp).
+#pragma once
+
+#include <vector>
+
+#include "pbms/config/stage_kind_spec.hpp"
+
+namespace pbms::md {
+
+[[nodiscard]] std::vector<config::MaterialKindSpec> eam_material_kinds();
+
+}  // namespace pbms::md
