@@ -1,5 +1,10 @@
 #include "md_elastic.hpp"
 
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "md_setup.hpp"
@@ -72,6 +77,36 @@ config::StageKindSpec ElasticStage::spec() {
 
 namespace {
 
+// The stage's parameters (schema and defaults: spec() above); times in ps,
+// temperatures in K, lengths in Å.
+struct ElasticParams {
+  std::string material;
+  std::array<int, 3> cells{};
+  double strain = 0.0;
+  double strain_at_temperature = 0.0;
+  double temperature = 0.0;                // 0: at 0 K only
+  std::optional<double> lattice_constant;  // at `temperature`; empty: the material's
+  double timestep = 0.0;
+  double equilibration = 0.0;
+  double production = 0.0;
+
+  static ElasticParams from_yaml(const YAML::Node& p);
+};
+
+ElasticParams ElasticParams::from_yaml(const YAML::Node& p) {
+  ElasticParams r;
+  r.material = p["material"].as<std::string>();
+  r.cells = cells_of(p["cells"]);
+  r.strain = p["strain"].as<double>();
+  r.strain_at_temperature = p["strain_at_temperature"].as<double>();
+  r.temperature = p["temperature"].as<double>();
+  if (p["lattice_constant"]) r.lattice_constant = p["lattice_constant"].as<double>();
+  r.timestep = p["timestep"].as<double>();
+  r.equilibration = p["equilibration"].as<double>();
+  r.production = p["production"].as<double>();
+  return r;
+}
+
 struct Stress {
   double xx, yy, zz, xy;  // GPa, tension positive
 };
@@ -80,9 +115,10 @@ enum class Mode { kNormal, kShear };
 
 // Strain the relaxed box, then read the stress: at 0 K after relaxing the
 // atoms, at T as an NVT average.
-Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::array<int, 3>& cells,
-                       double a, Mode mode, double e, double temperature, const YAML::Node& p,
-                       const std::string& tag, int64_t salt) {
+Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const ElasticParams& prm, double a,
+                       Mode mode, double e, double temperature, const std::string& tag,
+                       int64_t salt) {
+  const auto& cells = prm.cells;
   Lammps lmp(ctx.comm(), ctx.stage_dir() / (tag + ".log"));
   build_crystal(lmp, mat, a, cells, "p p p");
   lmp.command("change_box all triclinic");
@@ -108,18 +144,18 @@ Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::arra
     s = {lmp.thermo("pxx") * to_gpa, lmp.thermo("pyy") * to_gpa, lmp.thermo("pzz") * to_gpa,
          lmp.thermo("pxy") * to_gpa};
   } else {
-    const double dt = p["timestep"].as<double>();
+    const double dt = prm.timestep;
     lmp.command(fmt::format("timestep {}", dt));
     lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
                             2.0 * temperature, lammps_seed(ctx.seed(), 100 + salt)));
     lmp.command(fmt::format("fix nvt all nvt temp {0} {0} 0.1", temperature));
-    lmp.run(steps_for(p["equilibration"].as<double>(), dt), 1000000, {});
+    lmp.run(steps_for(prm.equilibration, dt), 1000000, {});
     lmp.command("variable pxx equal pxx");
     lmp.command("variable pyy equal pyy");
     lmp.command("variable pzz equal pzz");
     lmp.command("variable pxy equal pxy");
     lmp.command("fix samples all vector 10 v_pxx v_pyy v_pzz v_pxy");
-    lmp.run(steps_for(p["production"].as<double>(), dt), 1000000, {});
+    lmp.run(steps_for(prm.production, dt), 1000000, {});
     // The means md_driver takes below, printed in full so that a plain
     // `lmp -in` of the script can be compared with them.
     lmp.command(
@@ -133,75 +169,90 @@ Stress strained_stress(StageContext& ctx, const MdMaterial& mat, const std::arra
   return s;
 }
 
+// The `strains` table: every applied strain and the stress it gave.
+struct StrainTable {
+  std::vector<double> t, mode, e, xx, yy, zz, xy;
+
+  void add(double temperature, int m, double strain, const Stress& s) {
+    t.push_back(temperature);
+    mode.push_back(m);
+    e.push_back(strain);
+    xx.push_back(s.xx);
+    yy.push_back(s.yy);
+    zz.push_back(s.zz);
+    xy.push_back(s.xy);
+  }
+  [[nodiscard]] int64_t rows() const { return static_cast<int64_t>(t.size()); }
+
+  void write(StageResults& r) const {
+    r.add_column("strains", "temperature", "K", t);
+    r.add_column("strains", "mode", "1", mode);  // 0: xx, 1: xy (engineering shear)
+    r.add_column("strains", "strain", "1", e);
+    r.add_column("strains", "stress_xx", "GPa", xx);
+    r.add_column("strains", "stress_yy", "GPa", yy);
+    r.add_column("strains", "stress_zz", "GPa", zz);
+    r.add_column("strains", "stress_xy", "GPa", xy);
+  }
+};
+
+// The four strains (xx and xy, each + and -) at temperature t on a crystal
+// of lattice constant a, and the moduli from their central differences.
+analysis::CubicModuli measure(StageContext& ctx, const MdMaterial& mat, const ElasticParams& prm,
+                              double t, double a, StrainTable& table) {
+  const double e = t > 0 ? prm.strain_at_temperature : prm.strain;
+  // Progress counts the strains of the whole stage, hot ones included.
+  const int total = prm.temperature > 0 ? 8 : 4;
+  Stress s[2][2];  // [mode][sign]
+  for (int m = 0; m < 2; ++m) {
+    for (int sign = 0; sign < 2; ++sign) {
+      const double strain = sign == 0 ? e : -e;
+      const std::string tag = fmt::format("{}_{}_{}", t > 0 ? "hot" : "cold", m == 0 ? "xx" : "xy",
+                                          sign == 0 ? "plus" : "minus");
+      s[m][sign] = strained_stress(ctx, mat, prm, a, m == 0 ? Mode::kNormal : Mode::kShear, strain,
+                                   t, tag, m * 2 + sign);
+      table.add(t, m, strain, s[m][sign]);
+      ctx.progress(table.rows(), total, 0.0, tag);
+    }
+  }
+  return analysis::CubicModuli{(s[0][0].xx - s[0][1].xx) / (2 * e),
+                               (s[0][0].yy - s[0][1].yy) / (2 * e),
+                               (s[1][0].xy - s[1][1].xy) / (2 * e)};
+}
+
+// The 0 K lattice parameter, from relaxing the box at zero pressure.
+double relaxed_lattice_parameter(StageContext& ctx, const MdMaterial& mat,
+                                 const std::array<int, 3>& cells) {
+  Lammps lmp(ctx.comm(), ctx.stage_dir() / "relax.log");
+  build_crystal(lmp, mat, mat.lattice_constant, cells, "p p p");
+  lmp.command("fix relax all box/relax iso 0.0 vmax 0.001");
+  lmp.command("minimize 0 1e-12 10000 100000");
+  lmp.command("run 0");
+  return lmp.thermo("lx") / cells[0];
+}
+
 }  // namespace
 
 void ElasticStage::run(StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  const MdMaterial mat = material_of(ctx);
-  const auto cells = cells_of(p["cells"]);
-  const double e_cold = p["strain"].as<double>();
-  const double e_hot = p["strain_at_temperature"].as<double>();
-  const double temperature = p["temperature"].as<double>();
-  const double a_t =
-      p["lattice_constant"] ? p["lattice_constant"].as<double>() : mat.lattice_constant;
+  const ElasticParams prm = ElasticParams::from_yaml(ctx.params());
+  const MdMaterial mat = material_of(ctx, prm.material);
+  const double temperature = prm.temperature;
+  const double a_t = prm.lattice_constant.value_or(mat.lattice_constant);
   auto& r = ctx.results();
-  std::vector<double> col_t, col_mode, col_e, col_xx, col_yy, col_zz, col_xy;
-
-  const int total = temperature > 0 ? 8 : 4;
-  int done = 0;
-  auto measure = [&](double t, double a) {
-    const double e = t > 0 ? e_hot : e_cold;
-    Stress s[2][2];  // [mode][sign]
-    for (int m = 0; m < 2; ++m) {
-      for (int sign = 0; sign < 2; ++sign) {
-        const double strain = sign == 0 ? e : -e;
-        const std::string tag = fmt::format("{}_{}_{}", t > 0 ? "hot" : "cold",
-                                            m == 0 ? "xx" : "xy", sign == 0 ? "plus" : "minus");
-        s[m][sign] = strained_stress(ctx, mat, cells, a, m == 0 ? Mode::kNormal : Mode::kShear,
-                                     strain, t, p, tag, m * 2 + sign);
-        col_t.push_back(t);
-        col_mode.push_back(m);
-        col_e.push_back(strain);
-        col_xx.push_back(s[m][sign].xx);
-        col_yy.push_back(s[m][sign].yy);
-        col_zz.push_back(s[m][sign].zz);
-        col_xy.push_back(s[m][sign].xy);
-        ctx.progress(++done, total, 0.0, tag);
-      }
-    }
-    return analysis::CubicModuli{(s[0][0].xx - s[0][1].xx) / (2 * e),
-                                 (s[0][0].yy - s[0][1].yy) / (2 * e),
-                                 (s[1][0].xy - s[1][1].xy) / (2 * e)};
-  };
-
-  // The 0 K lattice parameter comes from the first relaxation; record it.
-  {
-    Lammps lmp(ctx.comm(), ctx.stage_dir() / "relax.log");
-    build_crystal(lmp, mat, mat.lattice_constant, cells, "p p p");
-    lmp.command("fix relax all box/relax iso 0.0 vmax 0.001");
-    lmp.command("minimize 0 1e-12 10000 100000");
-    lmp.command("run 0");
-    r.add_scalar("lattice_parameter", lmp.thermo("lx") / cells[0], "Å");
-  }
-  const analysis::CubicModuli cold = measure(0.0, mat.lattice_constant);
+  StrainTable table;
+  r.add_scalar("lattice_parameter", relaxed_lattice_parameter(ctx, mat, prm.cells), "Å");
+  const analysis::CubicModuli cold = measure(ctx, mat, prm, 0.0, mat.lattice_constant, table);
   r.add_scalar("c11", cold.c11, "GPa");
   r.add_scalar("c12", cold.c12, "GPa");
   r.add_scalar("c44", cold.c44, "GPa");
   r.add_scalar("bulk_modulus", cold.bulk_modulus(), "GPa");
   r.add_scalar("youngs_modulus_100", cold.youngs_modulus_100(), "GPa");
   if (temperature > 0) {
-    const analysis::CubicModuli hot = measure(temperature, a_t);
+    const analysis::CubicModuli hot = measure(ctx, mat, prm, temperature, a_t, table);
     r.add_scalar("c11_at_t", hot.c11, "GPa");
     r.add_scalar("c12_at_t", hot.c12, "GPa");
     r.add_scalar("c44_at_t", hot.c44, "GPa");
   }
-  r.add_column("strains", "temperature", "K", col_t);
-  r.add_column("strains", "mode", "1", col_mode);  // 0: xx, 1: xy (engineering shear)
-  r.add_column("strains", "strain", "1", col_e);
-  r.add_column("strains", "stress_xx", "GPa", col_xx);
-  r.add_column("strains", "stress_yy", "GPa", col_yy);
-  r.add_column("strains", "stress_zz", "GPa", col_zz);
-  r.add_column("strains", "stress_xy", "GPa", col_xy);
+  table.write(r);
 }
 
 }  // namespace pbms::md

@@ -71,77 +71,138 @@ config::StageKindSpec IsothermStage::spec() {
   return s;
 }
 
-void IsothermStage::run(StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  const MdMaterial mat = material_of(ctx);
-  const double temperature = p["temperature"].as<double>();
-  const auto pressures = p["pressures"].as<std::vector<double>>();
-  const auto cells = cells_of(p["cells"]);
-  const double dt = p["timestep"].as<double>();
-  const int64_t n_equil = steps_for(p["equilibration"].as<double>(), dt);
-  const int64_t n_prod = steps_for(p["production"].as<double>(), dt);
-  const int64_t every = p["sample_every"].as<int64_t>();
-  const double tdamp = p["thermostat_damping"].as<double>();
-  const double pdamp = p["barostat_damping"].as<double>();
-  const int64_t traj_every = p["trajectory_every"].as<int64_t>();
-  if (n_prod < 10 * every) {
+namespace {
+
+// The stage's parameters (schema and defaults: spec() above); times in ps,
+// pressures in bar, temperatures in K.
+struct IsothermParams {
+  std::string material;
+  double temperature = 0.0;
+  std::vector<double> pressures;
+  std::array<int, 3> cells{};
+  double timestep = 0.0;
+  double equilibration = 0.0;
+  double production = 0.0;
+  int64_t sample_every = 0;
+  double thermostat_damping = 0.0;
+  double barostat_damping = 0.0;
+  int64_t trajectory_every = 0;
+
+  static IsothermParams from_yaml(const YAML::Node& p);
+};
+
+IsothermParams IsothermParams::from_yaml(const YAML::Node& p) {
+  IsothermParams r;
+  r.material = p["material"].as<std::string>();
+  r.temperature = p["temperature"].as<double>();
+  r.pressures = p["pressures"].as<std::vector<double>>();
+  r.cells = cells_of(p["cells"]);
+  r.timestep = p["timestep"].as<double>();
+  r.equilibration = p["equilibration"].as<double>();
+  r.production = p["production"].as<double>();
+  r.sample_every = p["sample_every"].as<int64_t>();
+  r.thermostat_damping = p["thermostat_damping"].as<double>();
+  r.barostat_damping = p["barostat_damping"].as<double>();
+  r.trajectory_every = p["trajectory_every"].as<int64_t>();
+  return r;
+}
+
+// What every point of the ladder shares: its step counts, the whole
+// stage's for progress, and the atoms of the crystal.
+struct Plan {
+  int64_t n_equil = 0, n_prod = 0, per_point = 0, total = 0;
+  double n_atoms = 0.0;
+};
+
+Plan plan_of(const StageContext& ctx, const IsothermParams& prm, const MdMaterial& mat) {
+  Plan plan;
+  const double dt = prm.timestep;
+  plan.n_equil = steps_for(prm.equilibration, dt);
+  plan.n_prod = steps_for(prm.production, dt);
+  const int64_t every = prm.sample_every;
+  if (plan.n_prod < 10 * every) {
     throw Error(
         fmt::format("stage '{}': production ({} steps) must span at least 10 samples "
                     "(sample_every = {})",
-                    ctx.stage(), n_prod, every));
+                    ctx.stage(), plan.n_prod, every));
   }
-  const int64_t per_point = n_equil + n_prod;
-  const int64_t total = per_point * static_cast<int64_t>(pressures.size());
+  plan.per_point = plan.n_equil + plan.n_prod;
+  plan.total = plan.per_point * static_cast<int64_t>(prm.pressures.size());
   const double natoms_per_cell = mat.lattice == "fcc" ? 4.0 : 2.0;
-  const double n_atoms = natoms_per_cell * cells[0] * cells[1] * cells[2];
+  plan.n_atoms = natoms_per_cell * prm.cells[0] * prm.cells[1] * prm.cells[2];
+  return plan;
+}
 
-  std::vector<double> p_target, p_mean, p_err, vol, vol_err, alat, alat_err, temp;
-  for (size_t i = 0; i < pressures.size(); ++i) {
-    const std::string tag = fmt::format("p{}", i);
-    const std::string phase_label = fmt::format("P = {:.4g} GPa", pressures[i] / 1e4);
-    Lammps lmp(ctx.comm(), ctx.stage_dir() / (tag + ".log"));
-    lmp.comment(fmt::format("PBMS md_isotherm '{}', point {} of {}: {} K, {} bar", ctx.stage(),
-                            i + 1, pressures.size(), temperature, pressures[i]));
-    build_crystal(lmp, mat, mat.lattice_constant, cells, "p p p");
-    lmp.command(fmt::format("timestep {}", dt));
-    lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
-                            2.0 * temperature, lammps_seed(ctx.seed(), i)));
-    lmp.command(fmt::format("fix npt all npt temp {0} {0} {1} iso {2} {2} {3}", temperature, tdamp,
-                            pressures[i], pdamp));
-    lmp.command("thermo 1000");
-    lmp.command("thermo_style custom step temp press vol lx pe");
-    TrajectoryRecorder traj(ctx, lmp, tag + ".h5md", traj_every, {true, true, true});
-    const int64_t base = static_cast<int64_t>(i) * per_point;
-    auto report = [&](const char* phase, int64_t offset) {
-      return [&, phase, offset](int64_t done) {
-        const int64_t step = base + offset + done;
-        traj.maybe_write(offset + done, (offset + done) * dt);
-        ctx.progress(step, total, step * dt, fmt::format("{}: {}", phase_label, phase));
-      };
+// NPT at pressures[i]: equilibrates, then samples pressure, volume per atom,
+// lattice parameter and temperature every sample_every steps of production.
+// Returns the production samples; rank 0 writes the point's script.
+std::vector<std::vector<double>> sample_point(StageContext& ctx, const IsothermParams& prm,
+                                              const MdMaterial& mat, const Plan& plan, size_t i) {
+  const auto& pressures = prm.pressures;
+  const auto& cells = prm.cells;
+  const double temperature = prm.temperature, dt = prm.timestep;
+  const int64_t n_equil = plan.n_equil, n_prod = plan.n_prod, total = plan.total;
+  const int64_t every = prm.sample_every, traj_every = prm.trajectory_every;
+  const std::string tag = fmt::format("p{}", i);
+  const std::string phase_label = fmt::format("P = {:.4g} GPa", pressures[i] / 1e4);
+  Lammps lmp(ctx.comm(), ctx.stage_dir() / (tag + ".log"));
+  lmp.comment(fmt::format("PBMS md_isotherm '{}', point {} of {}: {} K, {} bar", ctx.stage(), i + 1,
+                          pressures.size(), temperature, pressures[i]));
+  build_crystal(lmp, mat, mat.lattice_constant, cells, "p p p");
+  lmp.command(fmt::format("timestep {}", dt));
+  lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
+                          2.0 * temperature, lammps_seed(ctx.seed(), i)));
+  lmp.command(fmt::format("fix npt all npt temp {0} {0} {1} iso {2} {2} {3}", temperature,
+                          prm.thermostat_damping, pressures[i], prm.barostat_damping));
+  lmp.command("thermo 1000");
+  lmp.command("thermo_style custom step temp press vol lx pe");
+  TrajectoryRecorder traj(ctx, lmp, tag + ".h5md", traj_every, {true, true, true});
+  const int64_t base = static_cast<int64_t>(i) * plan.per_point;
+  auto report = [&](const char* phase, int64_t offset) {
+    return [&, phase, offset](int64_t done) {
+      const int64_t step = base + offset + done;
+      traj.maybe_write(offset + done, (offset + done) * dt);
+      ctx.progress(step, total, step * dt, fmt::format("{}: {}", phase_label, phase));
     };
-    traj.maybe_write(0, 0.0);
-    if (n_equil > 0) lmp.run(n_equil, chunk_for(total, traj_every), report("equilibration", 0));
-    // Averaging windows of fix ave/time are aligned to absolute step numbers.
-    lmp.command("reset_timestep 0");
-    lmp.command(fmt::format("variable alat equal lx/{}", cells[0]));
-    lmp.command(fmt::format("variable vatom equal vol/{}", n_atoms));
-    lmp.command(fmt::format("fix samples all vector {} c_thermo_press v_vatom v_alat c_thermo_temp",
-                            every));
-    lmp.command(fmt::format("fix means all ave/time {0} {1} {2} c_thermo_press v_vatom v_alat",
-                            every, n_prod / every, n_prod / every * every));
-    lmp.run(n_prod, chunk_for(total, traj_every), report("production", n_equil));
-    // Replayed by a plain `lmp -in` this prints the same averages.
-    lmp.command(
-        "print \"PBMS_AVERAGES pressure $(f_means[1]) volume_per_atom $(f_means[2]) "
-        "lattice_parameter $(f_means[3])\"");
+  };
+  traj.maybe_write(0, 0.0);
+  if (n_equil > 0) lmp.run(n_equil, chunk_for(total, traj_every), report("equilibration", 0));
+  // Averaging windows of fix ave/time are aligned to absolute step numbers.
+  lmp.command("reset_timestep 0");
+  lmp.command(fmt::format("variable alat equal lx/{}", cells[0]));
+  lmp.command(fmt::format("variable vatom equal vol/{}", plan.n_atoms));
+  lmp.command(
+      fmt::format("fix samples all vector {} c_thermo_press v_vatom v_alat c_thermo_temp", every));
+  lmp.command(fmt::format("fix means all ave/time {0} {1} {2} c_thermo_press v_vatom v_alat", every,
+                          n_prod / every, n_prod / every * every));
+  lmp.run(n_prod, chunk_for(total, traj_every), report("production", n_equil));
+  // Replayed by a plain `lmp -in` this prints the same averages.
+  lmp.command(
+      "print \"PBMS_AVERAGES pressure $(f_means[1]) volume_per_atom $(f_means[2]) "
+      "lattice_parameter $(f_means[3])\"");
 
-    const auto rows = lmp.fix_array("samples", 4);
-    // Drop the sample taken at the first production step (end of the
-    // equilibration): only the production window is averaged.
-    std::vector<std::vector<double>> prod(rows.begin() + (rows.size() > 1 ? 1 : 0), rows.end());
+  const auto rows = lmp.fix_array("samples", 4);
+  if (ctx.rank() == 0) {
+    lmp.write_script(
+        ctx.stage_dir() / (tag + ".in"),
+        fmt::format("md_isotherm point {}: T = {} K, P = {} bar", i, temperature, pressures[i]));
+    ctx.results().files.push_back(ctx.stage() + "/" + tag + ".in");
+    if (traj.enabled()) ctx.results().files.push_back(traj.relative_path());
+  }
+  // Drop the sample taken at the first production step (end of the
+  // equilibration): only the production window is averaged.
+  std::vector<std::vector<double>> prod(rows.begin() + (rows.size() > 1 ? 1 : 0), rows.end());
+  return prod;
+}
+
+// The isotherm table: one row of means and standard errors per point.
+struct Isotherm {
+  std::vector<double> p_target, p_mean, p_err, vol, vol_err, alat, alat_err, temp;
+
+  void add(double target, const std::vector<std::vector<double>>& prod) {
     const auto press = column(prod, 0), va = column(prod, 1), aa = column(prod, 2),
                tt = column(prod, 3);
-    p_target.push_back(pressures[i]);
+    p_target.push_back(target);
     p_mean.push_back(analysis::mean(press));
     p_err.push_back(analysis::block_average(press, 10).error);
     vol.push_back(analysis::mean(va));
@@ -149,46 +210,56 @@ void IsothermStage::run(StageContext& ctx) {
     alat.push_back(analysis::mean(aa));
     alat_err.push_back(analysis::block_average(aa, 10).error);
     temp.push_back(analysis::mean(tt));
-    if (ctx.rank() == 0) {
-      lmp.write_script(
-          ctx.stage_dir() / (tag + ".in"),
-          fmt::format("md_isotherm point {}: T = {} K, P = {} bar", i, temperature, pressures[i]));
-      ctx.results().files.push_back(ctx.stage() + "/" + tag + ".in");
-      if (traj.enabled()) ctx.results().files.push_back(traj.relative_path());
-    }
   }
+};
 
+void report_isotherm(StageContext& ctx, const IsothermParams& prm, const MdMaterial& mat,
+                     const Plan& plan, const Isotherm& t) {
   // Fit against the measured mean pressures: they, not the targets, belong
   // to the measured volumes.
-  const auto fit = analysis::fit_birch_murnaghan(vol, p_mean);
+  const auto fit = analysis::fit_birch_murnaghan(t.vol, t.p_mean);
   std::vector<double> ratio, ratio_err;
-  for (size_t i = 0; i < vol.size(); ++i) {
-    ratio.push_back(vol[i] / fit.v0);
-    ratio_err.push_back(vol_err[i] / fit.v0);
+  for (size_t i = 0; i < t.vol.size(); ++i) {
+    ratio.push_back(t.vol[i] / fit.v0);
+    ratio_err.push_back(t.vol_err[i] / fit.v0);
   }
+  const auto& pressures = prm.pressures;
   size_t lowest = 0;
   for (size_t i = 1; i < pressures.size(); ++i) {
     if (pressures[i] < pressures[lowest]) lowest = i;
   }
   auto& r = ctx.results();
-  r.add_scalar("lattice_parameter", alat[lowest], "Å", alat_err[lowest]);
+  r.add_scalar("lattice_parameter", t.alat[lowest], "Å", t.alat_err[lowest]);
   r.add_scalar("bulk_modulus", fit.b0 / units::kBarPerGPa, "GPa");
   r.add_scalar("bulk_modulus_derivative", fit.b0_prime, "1");
   r.add_scalar("equilibrium_volume", fit.v0, "Å^3");
   r.add_scalar("fit_rms_residual", fit.rms_residual / units::kBarPerGPa, "GPa");
-  r.add_column("isotherm", "pressure_target", "bar", p_target);
-  r.add_column("isotherm", "pressure", "bar", p_mean);
-  r.add_column("isotherm", "pressure_std_error", "bar", p_err);
-  r.add_column("isotherm", "volume_per_atom", "Å^3", vol);
-  r.add_column("isotherm", "volume_per_atom_std_error", "Å^3", vol_err);
+  r.add_column("isotherm", "pressure_target", "bar", t.p_target);
+  r.add_column("isotherm", "pressure", "bar", t.p_mean);
+  r.add_column("isotherm", "pressure_std_error", "bar", t.p_err);
+  r.add_column("isotherm", "volume_per_atom", "Å^3", t.vol);
+  r.add_column("isotherm", "volume_per_atom_std_error", "Å^3", t.vol_err);
   r.add_column("isotherm", "volume_ratio", "1", ratio);
   r.add_column("isotherm", "volume_ratio_std_error", "1", ratio_err);
-  r.add_column("isotherm", "lattice_parameter", "Å", alat);
-  r.add_column("isotherm", "lattice_parameter_std_error", "Å", alat_err);
-  r.add_column("isotherm", "temperature", "K", temp);
+  r.add_column("isotherm", "lattice_parameter", "Å", t.alat);
+  r.add_column("isotherm", "lattice_parameter_std_error", "Å", t.alat_err);
+  r.add_column("isotherm", "temperature", "K", t.temp);
   r.attributes["material"] = mat.name;
   r.attributes["potential"] = mat.potential;
-  r.attributes["atoms"] = fmt::format("{}", static_cast<int64_t>(n_atoms));
+  r.attributes["atoms"] = fmt::format("{}", static_cast<int64_t>(plan.n_atoms));
+}
+
+}  // namespace
+
+void IsothermStage::run(StageContext& ctx) {
+  const IsothermParams prm = IsothermParams::from_yaml(ctx.params());
+  const MdMaterial mat = material_of(ctx, prm.material);
+  const Plan plan = plan_of(ctx, prm, mat);
+  Isotherm table;
+  for (size_t i = 0; i < prm.pressures.size(); ++i) {
+    table.add(prm.pressures[i], sample_point(ctx, prm, mat, plan, i));
+  }
+  report_isotherm(ctx, prm, mat, plan, table);
 }
 
 }  // namespace pbms::md

@@ -8,10 +8,9 @@
 
 namespace pbms::md {
 
-MdMaterial material_of(const StageContext& ctx) {
+MdMaterial MdMaterial::from_yaml(const std::string& name, const YAML::Node& n) {
   MdMaterial m;
-  m.name = ctx.params()["material"].as<std::string>();
-  const YAML::Node n = ctx.material(m.name);
+  m.name = name;
   const auto kind = n["kind"].as<std::string>();
   if (kind == "eam_alloy") {
     m.pair_style = "eam/alloy";
@@ -26,6 +25,10 @@ MdMaterial material_of(const StageContext& ctx) {
   m.lattice = n["lattice"].as<std::string>();
   m.lattice_constant = n["lattice_constant"].as<double>();
   return m;
+}
+
+MdMaterial material_of(const StageContext& ctx, const std::string& name) {
+  return MdMaterial::from_yaml(name, ctx.material(name));
 }
 
 void build_crystal(Lammps& lmp, const MdMaterial& m, double a, const std::array<int, 3>& cells,

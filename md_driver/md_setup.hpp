@@ -22,9 +22,14 @@ struct MdMaterial {
   double mass = 0.0;
   std::string lattice;  // "fcc"
   double lattice_constant = 0.0;
+
+  // The `materials:` entry `n`, named `name`. Its kind picks the pair
+  // style; a kind other than eam_alloy or eam_fs is refused.
+  static MdMaterial from_yaml(const std::string& name, const YAML::Node& n);
 };
 
-MdMaterial material_of(const StageContext& ctx);
+// The resolved `materials:` entry that a stage's `material` key names.
+MdMaterial material_of(const StageContext& ctx, const std::string& name);
 
 // Commands for units, atoms, an `cells` block of `lattice` at constant `a`,
 // the potential and the neighbour list. `boundary` as in LAMMPS ("p p p").

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -93,22 +96,35 @@ config::StageKindSpec TensionStage::spec() {
 
 namespace {
 
-struct Settings {
+// The stage's parameters (schema and defaults: spec() above), with the
+// step counts they give; times in ps, rates in 1/ps, lengths in Å.
+struct TensionParams {
+  std::string material;
   bool periodic = false;
   std::array<int, 3> cells{};
-  double a = 0, temperature = 0, rate = 0, initial_strain = 0, max_strain = 0, fit_max = 0;
+  std::optional<double> lattice_constant;  // empty: the material's
+  double temperature = 0, rate = 0, initial_strain = 0, max_strain = 0, fit_max = 0;
   double dt = 0;
   int grip = 0;
   int64_t n_equil = 0, n_load = 0, every = 0, traj_every = 0;
+
+  static TensionParams from_yaml(const YAML::Node& p);
+  // Throws pbms::Error naming the stage for grips that leave no wire, which
+  // only the cell count reveals, and for initial_strain with lateral: free,
+  // which the schema refuses already (only_when) but a driver called
+  // without the coupler's validation could be given.
+  void check(const std::string& stage) const;
+  [[nodiscard]] double lattice_constant_of(const MdMaterial& mat) const {
+    return lattice_constant.value_or(mat.lattice_constant);
+  }
 };
 
-Settings settings_of(const StageContext& ctx) {
-  const YAML::Node& p = ctx.params();
-  Settings s;
+TensionParams TensionParams::from_yaml(const YAML::Node& p) {
+  TensionParams s;
+  s.material = p["material"].as<std::string>();
   s.periodic = p["lateral"].as<std::string>() == "periodic";
   s.cells = cells_of(p["cells"]);
-  s.a = p["lattice_constant"] ? p["lattice_constant"].as<double>()
-                              : material_of(ctx).lattice_constant;
+  if (p["lattice_constant"]) s.lattice_constant = p["lattice_constant"].as<double>();
   s.temperature = p["temperature"].as<double>();
   s.rate = p["strain_rate"].as<double>();
   s.initial_strain = p["initial_strain"].as<double>();
@@ -120,25 +136,26 @@ Settings settings_of(const StageContext& ctx) {
   s.n_load = steps_for((s.max_strain - s.initial_strain) / s.rate, s.dt);
   s.every = p["sample_every"].as<int64_t>();
   s.traj_every = p["trajectory_every"].as<int64_t>();
-  // The schema already refuses the key with lateral: free (only_when); this
-  // guards a driver called without the coupler's validation.
-  if (!s.periodic && s.initial_strain != 0.0) {
+  return s;
+}
+
+void TensionParams::check(const std::string& stage) const {
+  if (!periodic && initial_strain != 0.0) {
     throw Error(
         fmt::format("stage '{}': initial_strain applies to lateral: periodic only; a "
                     "nanowire starts unstrained",
-                    ctx.stage()));
+                    stage));
   }
-  if (!s.periodic && 2 * s.grip >= s.cells[0] - 1) {
+  if (!periodic && 2 * grip >= cells[0] - 1) {
     throw Error(fmt::format("stage '{}': grips of {} cells leave no wire between them in {} cells",
-                            ctx.stage(), s.grip, s.cells[0]));
+                            stage, grip, cells[0]));
   }
-  return s;
 }
 
 // Runs `steps` steps of the stage from step `offset` on, writing frames and
 // reporting progress with `label(done)`.
-void run_stage_part(StageContext& ctx, Lammps& lmp, TrajectoryRecorder& traj, const Settings& s,
-                    int64_t offset, int64_t steps,
+void run_stage_part(StageContext& ctx, Lammps& lmp, TrajectoryRecorder& traj,
+                    const TensionParams& s, int64_t offset, int64_t steps,
                     const std::function<std::string(int64_t)>& label) {
   const int64_t total = s.n_equil + s.n_load;
   lmp.run(steps, chunk_for(total, s.traj_every), [&](int64_t done) {
@@ -147,12 +164,89 @@ void run_stage_part(StageContext& ctx, Lammps& lmp, TrajectoryRecorder& traj, co
   });
 }
 
+// The relaxed wire's grips, end slabs moved rigidly at +/- speed.
+struct Grips {
+  double xlo = 0, xhi = 0, length = 0;  // wire ends and grip thickness
+  double gauge = 0;                     // initial length between the grips
+  double speed = 0;
+};
+
+// Holds the end slabs of the relaxed wire rigid and sets them moving apart,
+// the wire between them thermostatted.
+Grips attach_grips(Lammps& lmp, const TensionParams& s, double a) {
+  lmp.command("variable xlo equal bound(all,xmin)");
+  lmp.command("variable xhi equal bound(all,xmax)");
+  Grips g;
+  g.xlo = lmp.variable("xlo");
+  g.xhi = lmp.variable("xhi");
+  g.length = s.grip * a;
+  g.gauge = g.xhi - g.xlo - 2.0 * g.length;
+  g.speed = 0.5 * s.rate * g.gauge;
+  lmp.command(fmt::format("region left_grip block INF {:.10g} INF INF INF INF units box",
+                          g.xlo + g.length));
+  lmp.command(fmt::format("region right_grip block {:.10g} INF INF INF INF INF units box",
+                          g.xhi - g.length));
+  lmp.command("group left region left_grip");
+  lmp.command("group right region right_grip");
+  lmp.command("group grips union left right");
+  lmp.command("group wire subtract all grips");
+  lmp.command("fix hold_left left setforce 0 0 0");
+  lmp.command("fix hold_right right setforce 0 0 0");
+  lmp.command("fix move_grips grips nve");
+  lmp.command(fmt::format("fix nvt wire nvt temp {0} {0} 0.1", s.temperature));
+  lmp.command("compute wire_temp wire temp");
+  lmp.command("reset_timestep 0");
+  lmp.command(fmt::format("velocity left set {} 0 0 units box", -g.speed));
+  lmp.command(fmt::format("velocity right set {} 0 0 units box", g.speed));
+  // The wire starts from the matching linear velocity profile, so no shock
+  // is launched from the grips.
+  lmp.command(fmt::format("velocity wire ramp vx {} {} x {:.10g} {:.10g} sum yes units box",
+                          -g.speed, g.speed, g.xlo + g.length, g.xhi - g.length));
+  return g;
+}
+
+// Samples of the wire every `every` steps: (strain, virial stress,
+// grip-force stress, wire temperature), also printed in full precision.
+void sample_wire(Lammps& lmp, const TensionParams& s, const Grips& g, double area) {
+  const int64_t every = s.every;
+  // Two measures of the axial stress, each averaged over a sampling window:
+  // the virial stress of the gauge atoms (as the seed computes it), and the
+  // force the wire exerts on the grips (read before setforce zeroes it) over
+  // the initial cross-section. The first is far less noisy; both must agree.
+  const double to_gpa = 1.0 / units::kBarPerGPa;
+  lmp.command("compute atom_stress wire stress/atom NULL");
+  lmp.command("compute wire_sxx wire reduce sum c_atom_stress[1]");
+  lmp.command(
+      fmt::format("variable gauge_length equal {:.12g}+{:.12g}*step*dt", g.gauge, 2.0 * g.speed));
+  lmp.command(fmt::format("variable virial_stress equal c_wire_sxx/({:.12g}*v_gauge_length)*{}",
+                          area, to_gpa));
+  lmp.command(
+      fmt::format("variable grip_stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
+                  area, units::kBarPerEvPerA3 * to_gpa));
+  lmp.command(
+      fmt::format("fix stress_avg all ave/time 1 {0} {0} v_virial_stress v_grip_stress", every));
+  // Strain at the middle of the window the stress was averaged over.
+  lmp.command(
+      fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1), s.rate));
+  lmp.command("variable virial_avg equal f_stress_avg[1]");
+  lmp.command("variable grip_avg equal f_stress_avg[2]");
+  lmp.command("variable wire_temp equal c_wire_temp");
+  lmp.command(
+      fmt::format("fix samples all vector {} v_strain v_virial_avg v_grip_avg v_wire_temp", every));
+  // The same samples in the log in full precision, so that a plain `lmp -in`
+  // of the script can be compared with the stress-strain table row by row.
+  lmp.command(fmt::format(
+      "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain) $(v_virial_avg) "
+      "$(v_grip_avg) $(v_wire_temp)\" screen yes",
+      every));
+}
+
 // The nanowire: rows of (strain, virial stress, grip-force stress, wire
 // temperature), one per sample, the first at step 0.
-std::vector<std::vector<double>> pull_nanowire(StageContext& ctx, Lammps& lmp, const Settings& s) {
-  const MdMaterial mat = material_of(ctx);
-  const double a = s.a, temperature = s.temperature, rate = s.rate, dt = s.dt;
-  const int64_t every = s.every;
+std::vector<std::vector<double>> pull_nanowire(StageContext& ctx, Lammps& lmp,
+                                               const TensionParams& s, const MdMaterial& mat) {
+  const double a = s.lattice_constant_of(mat), temperature = s.temperature, rate = s.rate,
+               dt = s.dt;
   const double area = s.cells[1] * a * s.cells[2] * a;
   build_crystal(lmp, mat, a, s.cells, "s s s");
   lmp.command(fmt::format("timestep {}", dt));
@@ -174,64 +268,8 @@ std::vector<std::vector<double>> pull_nanowire(StageContext& ctx, Lammps& lmp, c
   }
   lmp.command("unfix nvt");
   lmp.command("unfix no_drift");
-
-  // Grips: end slabs of the relaxed wire, moved rigidly at +/- v.
-  lmp.command("variable xlo equal bound(all,xmin)");
-  lmp.command("variable xhi equal bound(all,xmax)");
-  const double xlo = lmp.variable("xlo"), xhi = lmp.variable("xhi");
-  const double grip_len = s.grip * a;
-  const double gauge = xhi - xlo - 2.0 * grip_len;
-  const double grip_speed = 0.5 * rate * gauge;
-  lmp.command(
-      fmt::format("region left_grip block INF {:.10g} INF INF INF INF units box", xlo + grip_len));
-  lmp.command(
-      fmt::format("region right_grip block {:.10g} INF INF INF INF INF units box", xhi - grip_len));
-  lmp.command("group left region left_grip");
-  lmp.command("group right region right_grip");
-  lmp.command("group grips union left right");
-  lmp.command("group wire subtract all grips");
-  lmp.command("fix hold_left left setforce 0 0 0");
-  lmp.command("fix hold_right right setforce 0 0 0");
-  lmp.command("fix move_grips grips nve");
-  lmp.command(fmt::format("fix nvt wire nvt temp {0} {0} 0.1", temperature));
-  lmp.command("compute wire_temp wire temp");
-  lmp.command("reset_timestep 0");
-  lmp.command(fmt::format("velocity left set {} 0 0 units box", -grip_speed));
-  lmp.command(fmt::format("velocity right set {} 0 0 units box", grip_speed));
-  // The wire starts from the matching linear velocity profile, so no shock
-  // is launched from the grips.
-  lmp.command(fmt::format("velocity wire ramp vx {} {} x {:.10g} {:.10g} sum yes units box",
-                          -grip_speed, grip_speed, xlo + grip_len, xhi - grip_len));
-  // Two measures of the axial stress, each averaged over a sampling window:
-  // the virial stress of the gauge atoms (as the seed computes it), and the
-  // force the wire exerts on the grips (read before setforce zeroes it) over
-  // the initial cross-section. The first is far less noisy; both must agree.
-  const double to_gpa = 1.0 / units::kBarPerGPa;
-  lmp.command("compute atom_stress wire stress/atom NULL");
-  lmp.command("compute wire_sxx wire reduce sum c_atom_stress[1]");
-  lmp.command(
-      fmt::format("variable gauge_length equal {:.12g}+{:.12g}*step*dt", gauge, 2.0 * grip_speed));
-  lmp.command(fmt::format("variable virial_stress equal c_wire_sxx/({:.12g}*v_gauge_length)*{}",
-                          area, to_gpa));
-  lmp.command(
-      fmt::format("variable grip_stress equal (f_hold_left[1]-f_hold_right[1])/(2*{:.12g})*{:.12g}",
-                  area, units::kBarPerEvPerA3 * to_gpa));
-  lmp.command(
-      fmt::format("fix stress_avg all ave/time 1 {0} {0} v_virial_stress v_grip_stress", every));
-  // Strain at the middle of the window the stress was averaged over.
-  lmp.command(
-      fmt::format("variable strain equal (step-{:.1f})*dt*{:.12g}", 0.5 * (every - 1), rate));
-  lmp.command("variable virial_avg equal f_stress_avg[1]");
-  lmp.command("variable grip_avg equal f_stress_avg[2]");
-  lmp.command("variable wire_temp equal c_wire_temp");
-  lmp.command(
-      fmt::format("fix samples all vector {} v_strain v_virial_avg v_grip_avg v_wire_temp", every));
-  // The same samples in the log in full precision, so that a plain `lmp -in`
-  // of the script can be compared with the stress-strain table row by row.
-  lmp.command(fmt::format(
-      "fix print_samples all print {} \"PBMS_SAMPLE $(step) $(v_strain) $(v_virial_avg) "
-      "$(v_grip_avg) $(v_wire_temp)\" screen yes",
-      every));
+  const Grips grips = attach_grips(lmp, s, a);
+  sample_wire(lmp, s, grips, area);
   run_stage_part(ctx, lmp, traj, s, s.n_equil, s.n_load,
                  [&](int64_t done) { return fmt::format("strain {:.4f}", done * dt * rate); });
   if (ctx.rank() == 0 && traj.enabled()) ctx.results().files.push_back(traj.relative_path());
@@ -264,13 +302,15 @@ void sample_box(Lammps& lmp, double l0, int64_t every) {
 }
 
 // The periodic crystal: rows of (strain, stress xx, yy, zz, temperature).
-std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp, const Settings& s) {
-  build_crystal(lmp, material_of(ctx), s.a, s.cells, "p p p");
+std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp,
+                                               const TensionParams& s, const MdMaterial& mat) {
+  const double a = s.lattice_constant_of(mat);
+  build_crystal(lmp, mat, a, s.cells, "p p p");
   lmp.command(fmt::format("timestep {}", s.dt));
   // Strain is measured against the crystal at `lattice_constant`, which is
   // stress free at the temperature when that is the isotherm's zero-pressure
   // value; a small error in it shifts the curve, not its slope.
-  const double l0 = s.cells[0] * s.a;
+  const double l0 = s.cells[0] * a;
   if (s.initial_strain != 0.0) {
     lmp.command(fmt::format("change_box all x scale {:.15g} remap", 1.0 + s.initial_strain));
   }
@@ -338,7 +378,7 @@ analysis::LineFit fit_elastic(const StageContext& ctx, const std::vector<double>
   return fit;
 }
 
-void report(StageContext& ctx, const Settings& s, std::vector<std::vector<double>> rows) {
+void report(StageContext& ctx, const TensionParams& s, std::vector<std::vector<double>> rows) {
   // Row 0 is step 0, before any window was averaged.
   if (!rows.empty()) rows.erase(rows.begin());
   const auto strain = column(rows, 0), stress = column(rows, 1);
@@ -376,12 +416,14 @@ void report(StageContext& ctx, const Settings& s, std::vector<std::vector<double
 }  // namespace
 
 void TensionStage::run(StageContext& ctx) {
-  const Settings s = settings_of(ctx);
+  const TensionParams s = TensionParams::from_yaml(ctx.params());
+  const MdMaterial mat = material_of(ctx, s.material);
+  s.check(ctx.stage());
   Lammps lmp(ctx.comm(), ctx.stage_dir() / "tension.log");
   lmp.comment(fmt::format("PBMS md_tension '{}' ({}): {}x{}x{} cells, {} K, strain rate {} 1/ps",
                           ctx.stage(), s.periodic ? "periodic" : "nanowire", s.cells[0], s.cells[1],
                           s.cells[2], s.temperature, s.rate));
-  auto rows = s.periodic ? pull_periodic(ctx, lmp, s) : pull_nanowire(ctx, lmp, s);
+  auto rows = s.periodic ? pull_periodic(ctx, lmp, s, mat) : pull_nanowire(ctx, lmp, s, mat);
   report(ctx, s, std::move(rows));
   if (ctx.rank() == 0) {
     lmp.write_script(ctx.stage_dir() / "tension.in", "md_tension " + ctx.stage());
