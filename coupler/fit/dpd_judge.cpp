@@ -95,18 +95,25 @@ protocol::RunStage DpdJudge::request(const std::string& kind, YAML::Node params,
 
 Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
   const auto t0 = std::chrono::steady_clock::now();
-  Scheduler& scheduler = ctx_.scheduler();
-  // What a request answers for: rows of the isotherm targets, the lattice
-  // constant of zero pressure, or one strained state of the elastic
-  // constants.
-  struct Pending {
-    std::vector<size_t> rows;
-    bool lattice = false;
-    std::optional<size_t> state;
-  };
-  std::map<protocol::RequestId, Pending> pending;
-  const size_t rows = settings_.isotherm ? settings_.isotherm->pressure.size() : 0;
+  Requests pending;
+  submit_isotherms(potential, temperature, pending);
+  const Answers answers = collect(potential, temperature, pending);
+  Judgement j;
+  for (const auto& [id, a] : answers) {
+    if (const auto* f = std::get_if<protocol::StageFailed>(&a)) {
+      j.ok = false;
+      if (j.reason.empty()) j.reason = f->reason;
+    }
+  }
+  if (j.ok) j = judgement_of(pending, answers);
+  j.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return j;
+}
 
+void DpdJudge::submit_isotherms(const YAML::Node& potential, double temperature,
+                                Requests& pending) const {
+  Scheduler& scheduler = ctx_.scheduler();
+  const size_t rows = settings_.isotherm ? settings_.isotherm->pressure.size() : 0;
   // The elastic constants are sampled at the lattice constant of zero
   // pressure, which a dpd_elastic stage solves for first: here a dpd_isotherm
   // request at exactly 0 GPa, the same solve on the same crystal and seed. It
@@ -120,7 +127,6 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     pending.emplace(scheduler.submit(kDriver, request("dpd_isotherm", params, potential)),
                     Pending{{}, true, std::nullopt});
   }
-
   // The target pressures. Every pressure is sampled on its own crystal with
   // the same seed, so how they are shared out does not change the answers.
   // Sampled, a pressure takes seconds (a secant over two or three DPD runs)
@@ -140,13 +146,17 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     pending.emplace(scheduler.submit(kDriver, request("dpd_isotherm", params, potential)),
                     std::move(share));
   }
+}
 
+DpdJudge::Answers DpdJudge::collect(const YAML::Node& potential, double temperature,
+                                    Requests& pending) const {
   // Every request goes out as soon as it can; the scheduler queues what the
   // groups cannot take yet. The four strained states follow the lattice
   // constant, each a request of its own, so that they spread over the
-  // groups; analysis::elastic_constants_from_states below combines them as the
+  // groups; analysis::elastic_constants_from_states combines them as the
   // dpd_elastic stage does.
-  std::map<protocol::RequestId, Answer> answers;
+  Scheduler& scheduler = ctx_.scheduler();
+  Answers answers;
   while (answers.size() < pending.size()) {
     auto a = scheduler.next(std::chrono::seconds(1));
     if (!a || std::holds_alternative<protocol::Progress>(*a)) continue;
@@ -164,18 +174,11 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     }
     answers.emplace(id, std::move(*a));
   }
+  return answers;
+}
 
+Judgement DpdJudge::judgement_of(const Requests& pending, const Answers& answers) const {
   Judgement j;
-  for (const auto& [id, a] : answers) {
-    if (const auto* f = std::get_if<protocol::StageFailed>(&a)) {
-      j.ok = false;
-      if (j.reason.empty()) j.reason = f->reason;
-    }
-  }
-  if (!j.ok) {
-    j.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return j;
-  }
   if (settings_.isotherm) {
     const size_t n = settings_.isotherm->pressure.size();
     j.volume_per_atom.assign(n, 0.0);
@@ -213,7 +216,6 @@ Judgement DpdJudge::judge(const YAML::Node& potential, double temperature) {
     j.c12_error = units::to_metal(e.c12_error, "GPa");
     j.c44_error = units::to_metal(e.c44_error, "GPa");
   }
-  j.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return j;
 }
 

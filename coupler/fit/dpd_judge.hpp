@@ -5,7 +5,9 @@
 // ran them, so a fit gives the same parameters on any number of groups.
 #pragma once
 
+#include <map>
 #include <optional>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -24,6 +26,26 @@ class DpdJudge {
   Judgement judge(const YAML::Node& potential, double temperature);
 
  private:
+  // What a request answers for: rows of the isotherm targets, the lattice
+  // constant of zero pressure, or one strained state of the elastic
+  // constants.
+  struct Pending {
+    std::vector<size_t> rows;
+    bool lattice = false;
+    std::optional<size_t> state;
+  };
+  using Requests = std::map<protocol::RequestId, Pending>;
+  using Answers = std::map<protocol::RequestId, Answer>;
+
+  // The requests that can go out at once: the lattice constant of zero
+  // pressure (with elastic targets) and the target pressures.
+  void submit_isotherms(const YAML::Node& potential, double temperature, Requests& pending) const;
+  // Every answer; the strained states go out as the lattice constant they
+  // are sampled at comes back.
+  Answers collect(const YAML::Node& potential, double temperature, Requests& pending) const;
+  // The answers as volumes and elastic constants (metal units).
+  [[nodiscard]] Judgement judgement_of(const Requests& pending, const Answers& answers) const;
+
   // A request of `kind` for the candidate; `lattice_constant` replaces the
   // material's.
   protocol::RunStage request(const std::string& kind, YAML::Node params,

@@ -190,6 +190,87 @@ void report_opening(StageResults& r, const std::vector<double>& t,
   r.add_scalar("max_interface_closing", nearer, "Å");
 }
 
+// What the DPD part samples every sample_every steps: the probes, the
+// tension curve and the interface opening, each its share summed with
+// mpm_driver's (whose part makes the same calls in the same order).
+class DpdPartSampler {
+ public:
+  DpdPartSampler(MPI_Comm comm, MPI_Comm inter, DpdPartOfBody& part, DpdView& view,
+                 coupling::ConcurrentProbes& probes)
+      : comm_(comm), inter_(inter), part_(part), cp_(part.params()), view_(view), probes_(probes) {
+    if (cp_.tension) tension_.emplace(*cp_.tension, part);
+  }
+
+  // Collective over both programs.
+  void sample(std::int64_t n) {
+    DpdEngine& engine = part_.engine();
+    const auto v = view_.view(engine);
+    probes_.sample(n, v);
+    if (tension_) sample_tension(n);
+    if (cp_.opening) {
+      const auto mine = probes_.opening_moments(v);
+      opening_t_.push_back(static_cast<double>(n) * cp_.time_step);
+      opening_.push_back(
+          coupling::ConcurrentProbes::opening(mine, coupling::swap_values(inter_, comm_, mine)));
+    }
+  }
+
+  void report(StageResults& r) const {
+    if (cp_.opening && !opening_.empty()) report_opening(r, opening_t_, opening_);
+  }
+  void report_tension(StageResults& r) const {
+    if (tension_) tension_->report(r);
+  }
+
+ private:
+  void sample_tension(std::int64_t n) {
+    const auto& reactions = part_.grid().solver().point_velocity_reactions();
+    const auto masks = motion_masks(part_);
+    const int a = tension_->probe.axis;
+    double f[2] = {coupling::grip_force(comm_, reactions, masks, tension_->left, a),
+                   coupling::grip_force(comm_, reactions, masks, tension_->right, a)};
+    for (double& x : f) x += coupling::swap_scalar(inter_, comm_, x);
+    const double w =
+        part_.engine().thermo(true).virial[static_cast<std::size_t>(a)];  // a pair pass
+    const double sv = coupling::swap_scalar(inter_, comm_, 0.0);
+    tension_->add(static_cast<double>(n) * cp_.time_step, w, sv, f[0], f[1]);
+  }
+
+  MPI_Comm comm_, inter_;
+  DpdPartOfBody& part_;
+  const coupling::ConcurrentParams& cp_;
+  DpdView& view_;
+  coupling::ConcurrentProbes& probes_;
+  std::optional<TensionSeries> tension_;
+  std::vector<double> opening_t_, opening_;
+};
+
+// The whole body's mass: this part's and mpm_driver's (collective over both).
+double body_mass(MPI_Comm comm, MPI_Comm inter, DpdPartOfBody& part) {
+  const double mine = part.dpd_particles() * part.engine().particles().mass_per_type[0];
+  return coupling::swap_scalar(inter, comm, mine) + mine;
+}
+
+// The bar speed c = sqrt(E / rho) of the MPM points' material, Å/ps (bar
+// Å³/(g/mol) to Å²/ps²): momentum changes are reported over M c.
+double bar_speed(const coupling::ConcurrentParams& cp) {
+  const double a = cp.point_lattice_constant();
+  const double rho = 4.0 * cp.particle_mass / (a * a * a);
+  return std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
+}
+
+// Bytes the DPD part's ranks sent in the nodal sums and received as
+// partners, per step, summed over its ranks.
+void report_bytes(StageResults& r, MPI_Comm comm, const coupling::ExchangeProfile& nodal,
+                  const coupling::ExchangeProfile& partners, std::int64_t steps) {
+  double bytes[2] = {static_cast<double>(nodal.bytes_sent),
+                     static_cast<double>(partners.bytes_received)};
+  MPI_Allreduce(MPI_IN_PLACE, bytes, 2, MPI_DOUBLE, MPI_SUM, comm);
+  const double n = std::max<double>(1.0, static_cast<double>(steps));
+  r.add_scalar("nodal_sum_bytes_per_step", bytes[0] / n, "1");
+  r.add_scalar("partner_bytes_per_step", bytes[1] / n, "1");
+}
+
 }  // namespace
 
 config::StageKindSpec ConcurrentStage::spec() {
@@ -203,8 +284,6 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   DpdPartOfBody part(ctx.comm(), ctx.params(), ctx.material(), ctx.seed(), ctx.stage());
   const coupling::ConcurrentParams& cp = part.params();
-  std::optional<TensionSeries> tension;
-  if (cp.tension) tension.emplace(*cp.tension, part);
   coupling::hand_over(inter, ctx.comm(), part.handover());
   DpdEngine& engine = part.engine();
   DpdGridStep& grid = part.grid();
@@ -218,36 +297,10 @@ void ConcurrentStage::run(StageContext& ctx) {
   DpdView view;
   coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),
                                     0.5 * cp.material_lattice_constant, view.view(engine));
-  // The whole body's mass and momentum: this part's and mpm_driver's.
-  const double body_mass =
-      coupling::swap_scalar(inter, ctx.comm(),
-                            part.dpd_particles() * engine.particles().mass_per_type[0]) +
-      part.dpd_particles() * engine.particles().mass_per_type[0];
-  std::vector<double> opening_t, opening;
+  const double mass = body_mass(ctx.comm(), inter, part);
+  DpdPartSampler sampler(ctx.comm(), inter, part, view, probes);
   DpdLedger ledger(ctx.comm());
   grid.tally_each_step(true);
-  auto sample = [&](std::int64_t n) {
-    const auto v = view.view(engine);
-    probes.sample(n, v);
-    if (tension) {
-      const auto& reactions = grid.solver().point_velocity_reactions();
-      const auto masks = motion_masks(part);
-      const int a = tension->probe.axis;
-      double f[2] = {coupling::grip_force(ctx.comm(), reactions, masks, tension->left, a),
-                     coupling::grip_force(ctx.comm(), reactions, masks, tension->right, a)};
-      for (double& x : f) x += coupling::swap_scalar(inter, ctx.comm(), x);
-      const double w = engine.thermo(true).virial[static_cast<std::size_t>(a)];  // a pair pass
-      const double sv = coupling::swap_scalar(inter, ctx.comm(), 0.0);
-      tension->add(static_cast<double>(n) * cp.time_step, w, sv, f[0], f[1]);
-    }
-    if (cp.opening) {
-      const auto mine = probes.opening_moments(v);
-      opening_t.push_back(static_cast<double>(n) * cp.time_step);
-      opening.push_back(coupling::ConcurrentProbes::opening(
-          mine, coupling::swap_values(inter, ctx.comm(), mine)));
-    }
-  };
-
   std::unique_ptr<DpdPartTrajectory> trajectory;
   if (cp.particles_every > 0) {
     trajectory =
@@ -256,7 +309,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   probes.track(0, view.view(engine));
   ledger.motion(0.0, view.view(engine), engine);
-  sample(0);
+  sampler.sample(0);
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
@@ -266,7 +319,7 @@ void ConcurrentStage::run(StageContext& ctx) {
     const auto now = view.view(engine);
     ledger.motion(static_cast<double>(n) * cp.time_step, now, engine);
     probes.track(n, now);
-    if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
+    if (n % cp.sample_every == 0 || n == cp.steps) sampler.sample(n);
     if (trajectory && (n % cp.particles_every == 0 || n == cp.steps)) {
       trajectory->write(engine, n, static_cast<double>(n) * cp.time_step);
     }
@@ -286,27 +339,17 @@ void ConcurrentStage::run(StageContext& ctx) {
   r.add_scalar("dpd_particles", part.dpd_particles(), "1");
   r.add_scalar("mpm_points", part.mpm_points(), "1");
   r.add_scalar("dpd_temperature", engine.thermo(false).temperature, "K");
-  // c = sqrt(E / rho) of the MPM material, bar Å³/(g/mol) to Å²/ps².
-  const double a = cp.point_lattice_constant();
-  const double rho = 4.0 * cp.particle_mass / (a * a * a);
-  const double c = std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
-  r.add_scalar("momentum_change", ledger.table().momentum_drift(inter) / (body_mass * c), "1");
-  if (cp.opening && !opening.empty()) report_opening(r, opening_t, opening);
+  r.add_scalar("momentum_change", ledger.table().momentum_drift(inter) / (mass * bar_speed(cp)),
+               "1");
+  sampler.report(r);
   if (cp.steps > 0 && seconds > 0.0) {
     r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
   }
   probes.report(r, "dpd");
   ledger.table().report(r, "dpd");
   coupling::report_exchanges(r, ctx.comm(), "dpd", nodal, partners, cp.steps, seconds);
-  if (tension) tension->report(r);
-  // Bytes the DPD part's ranks sent in the nodal sums and received as
-  // partners, per step, summed over its ranks.
-  double bytes[2] = {static_cast<double>(nodal.bytes_sent),
-                     static_cast<double>(partners.bytes_received)};
-  MPI_Allreduce(MPI_IN_PLACE, bytes, 2, MPI_DOUBLE, MPI_SUM, ctx.comm());
-  const double steps = std::max<double>(1.0, static_cast<double>(cp.steps));
-  r.add_scalar("nodal_sum_bytes_per_step", bytes[0] / steps, "1");
-  r.add_scalar("partner_bytes_per_step", bytes[1] / steps, "1");
+  sampler.report_tension(r);
+  report_bytes(r, ctx.comm(), nodal, partners, cp.steps);
 }
 
 }  // namespace pbms::dpd

@@ -61,6 +61,91 @@ coupling::ParticleView view_of(const grid::MaterialPoints& p) {
   return {p.size(), p.id, p.x, p.v, p.mass, p.groups};
 }
 
+// The MPM part's share of what the DPD part samples every sample_every
+// steps (the probes, the tension curve's grip forces and stress, the
+// interface opening), handed over in the order the DPD part asks for it.
+class MpmPartSampler {
+ public:
+  MpmPartSampler(MPI_Comm comm, MPI_Comm inter, const coupling::ConcurrentParams& cp,
+                 const MpmEngine& engine, coupling::ConcurrentProbes& probes)
+      : comm_(comm), inter_(inter), cp_(cp), engine_(engine), probes_(probes) {}
+
+  // Collective over both programs.
+  void sample(std::int64_t n) {
+    const auto v = view_of(engine_.points());
+    probes_.sample(n, v);
+    if (cp_.tension) hand_over_tension();
+    if (cp_.opening) (void)coupling::swap_values(inter_, comm_, probes_.opening_moments(v));
+  }
+
+ private:
+  void hand_over_tension() {
+    const MpmModel& m = engine_.model();
+    std::vector<std::uint32_t> masks;
+    for (const auto& pv : m.bc.point_velocities) masks.push_back(pv.group_mask);
+    const auto& reactions = engine_.solver().point_velocity_reactions();
+    for (const auto& grip : {cp_.tension->left_grip, cp_.tension->right_grip}) {
+      const double f =
+          coupling::grip_force(comm_, reactions, masks, m.group_mask(grip), cp_.tension->axis);
+      (void)coupling::swap_scalar(inter_, comm_, f);
+    }
+    // Σ σ V along the axis, bar Å^3 to eV.
+    const grid::MaterialPoints& q = engine_.points();
+    double sv = 0.0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      sv += q.volume(i) * q.state[i].stress.voigt[static_cast<std::size_t>(cp_.tension->axis)];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &sv, 1, MPI_DOUBLE, MPI_SUM, comm_);
+    (void)coupling::swap_scalar(inter_, comm_, sv / units::kBarPerEvPerA3);
+  }
+
+  MPI_Comm comm_, inter_;
+  const coupling::ConcurrentParams& cp_;
+  const MpmEngine& engine_;
+  coupling::ConcurrentProbes& probes_;
+};
+
+// The MPM part's points (H5MD) and its nodes (XDMF + HDF5), every
+// particles_every steps.
+class MpmPartOutput {
+ public:
+  MpmPartOutput(StageContext& ctx, const coupling::ConcurrentParams& cp, const MpmEngine& engine) {
+    H5mdWriter::Options o;
+    o.path = (ctx.stage_dir() / "mpm_particles.h5md").string();
+    o.creator_version = "mpm_driver (concurrent)";
+    o.periodic = cp.periodic;
+    o.velocities = true;
+    points_ = std::make_unique<H5mdWriter>(ctx.comm(), o, engine.points().id,
+                                           std::vector<int>(engine.points().size(), 1));
+    write_points(*points_, engine, 0, 0.0);
+    grid_ = std::make_unique<GridFieldWriter>(ctx.comm(), (ctx.stage_dir() / "mpm_grid").string(),
+                                              cp.grid, engine.owned_nodes());
+  }
+  void write(const MpmEngine& engine, std::int64_t n, double t) {
+    write_grid(*grid_, engine, n, t);
+    write_points(*points_, engine, n, t);
+  }
+  static void list_files(StageResults& r, const std::string& stage) {
+    r.files.push_back((std::filesystem::path(stage) / "mpm_particles.h5md").string());
+    r.files.push_back((std::filesystem::path(stage) / "mpm_grid.h5").string());
+    r.files.push_back((std::filesystem::path(stage) / "mpm_grid.xdmf").string());
+  }
+
+ private:
+  std::unique_ptr<GridFieldWriter> grid_;
+  std::unique_ptr<H5mdWriter> points_;
+};
+
+// A ledger row of the MPM part at step n: its motion and its stored and
+// dissipated energy.
+void add_to_ledger(coupling::ConservationLedger& ledger, const MpmEngine& engine, std::int64_t n,
+                   double dt) {
+  auto row = ledger.motion_of(static_cast<double>(n) * dt, view_of(engine.points()));
+  const grid::EnergySummary energy = engine.solver().energy(engine.points());
+  row.energies = {energy.stored, energy.dissipated};
+  ledger.add(std::move(row));
+}
+
 }  // namespace
 
 config::StageKindSpec ConcurrentMpmPart::spec() {
@@ -81,8 +166,6 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   }
   MpmPartOfBody part(ctx.comm(), cp, coupling::take_over(inter, ctx.comm()));
   MpmEngine& engine = part.engine();
-  const auto& groups = part.group_names();
-  const double a = part.lattice_constant();
   int remote = 0;
   MPI_Comm_remote_size(inter, &remote);
   const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
@@ -90,70 +173,27 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
                                   part.reach());
   coupling::CouplingScheme scheme({&part.side()}, link, cp.interface);
 
-  coupling::ConcurrentProbes probes(ctx.comm(), cp, groups, 0.5 * a, view_of(engine.points()));
+  coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),
+                                    0.5 * part.lattice_constant(), view_of(engine.points()));
   const double mass = static_cast<double>(engine.total_points()) * cp.particle_mass;
   (void)coupling::swap_scalar(inter, ctx.comm(), mass);
   coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"});
-  auto add_to_ledger = [&](std::int64_t n) {
-    auto row = ledger.motion_of(static_cast<double>(n) * cp.time_step, view_of(engine.points()));
-    const grid::EnergySummary energy = engine.solver().energy(engine.points());
-    row.energies = {energy.stored, energy.dissipated};
-    ledger.add(std::move(row));
-  };
-  auto sample = [&](std::int64_t n) {
-    const auto v = view_of(engine.points());
-    probes.sample(n, v);
-    if (cp.tension) {
-      const MpmModel& m = engine.model();
-      std::vector<std::uint32_t> masks;
-      for (const auto& pv : m.bc.point_velocities) masks.push_back(pv.group_mask);
-      const auto& reactions = engine.solver().point_velocity_reactions();
-      for (const auto& grip : {cp.tension->left_grip, cp.tension->right_grip}) {
-        const double f = coupling::grip_force(ctx.comm(), reactions, masks, m.group_mask(grip),
-                                              cp.tension->axis);
-        (void)coupling::swap_scalar(inter, ctx.comm(), f);
-      }
-      // Σ σ V along the axis, bar Å^3 to eV.
-      const grid::MaterialPoints& q = engine.points();
-      double sv = 0.0;
-      for (std::size_t i = 0; i < q.size(); ++i) {
-        sv += q.volume(i) * q.state[i].stress.voigt[static_cast<std::size_t>(cp.tension->axis)];
-      }
-      MPI_Allreduce(MPI_IN_PLACE, &sv, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());
-      (void)coupling::swap_scalar(inter, ctx.comm(), sv / units::kBarPerEvPerA3);
-    }
-    if (cp.opening) {
-      (void)coupling::swap_values(inter, ctx.comm(), probes.opening_moments(v));
-    }
-  };
-  std::unique_ptr<GridFieldWriter> grid_out;
-  std::unique_ptr<H5mdWriter> points_out;
-  if (cp.particles_every > 0) {
-    H5mdWriter::Options o;
-    o.path = (ctx.stage_dir() / "mpm_particles.h5md").string();
-    o.creator_version = "mpm_driver (concurrent)";
-    o.periodic = cp.periodic;
-    o.velocities = true;
-    points_out = std::make_unique<H5mdWriter>(ctx.comm(), o, engine.points().id,
-                                              std::vector<int>(engine.points().size(), 1));
-    write_points(*points_out, engine, 0, 0.0);
-    grid_out = std::make_unique<GridFieldWriter>(
-        ctx.comm(), (ctx.stage_dir() / "mpm_grid").string(), cp.grid, engine.owned_nodes());
-  }
+  MpmPartSampler sampler(ctx.comm(), inter, cp, engine, probes);
+  std::unique_ptr<MpmPartOutput> output;
+  if (cp.particles_every > 0) output = std::make_unique<MpmPartOutput>(ctx, cp, engine);
   probes.track(0, view_of(engine.points()));
-  add_to_ledger(0);
-  sample(0);
+  add_to_ledger(ledger, engine, 0, cp.time_step);
+  sampler.sample(0);
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     set_current_step(n);
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kMpm));
     probes.track(n, view_of(engine.points()));
-    add_to_ledger(n);
-    if (n % cp.sample_every == 0 || n == cp.steps) sample(n);
-    if (grid_out && (n % cp.particles_every == 0 || n == cp.steps)) {
-      write_grid(*grid_out, engine, n, static_cast<double>(n) * cp.time_step);
-      write_points(*points_out, engine, n, static_cast<double>(n) * cp.time_step);
+    add_to_ledger(ledger, engine, n, cp.time_step);
+    if (n % cp.sample_every == 0 || n == cp.steps) sampler.sample(n);
+    if (output && (n % cp.particles_every == 0 || n == cp.steps)) {
+      output->write(engine, n, static_cast<double>(n) * cp.time_step);
     }
   }
   const double seconds =
@@ -163,11 +203,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   scheme.close();
   (void)ledger.momentum_drift(inter);  // dpd_driver reports it
   auto& r = ctx.results();
-  if (grid_out) {
-    r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_particles.h5md").string());
-    r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.h5").string());
-    r.files.push_back((std::filesystem::path(ctx.stage()) / "mpm_grid.xdmf").string());
-  }
+  if (output) MpmPartOutput::list_files(r, ctx.stage());
   probes.report(r, "mpm");
   ledger.report(r, "mpm");
   coupling::report_exchanges(r, ctx.comm(), "mpm", nodal, partners, cp.steps, seconds);

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The layer rules of PBMS, checked on the source tree (docs/architecture.md).
 
-Usage: check_layers.py ROOT [--baseline FILE]
+Usage: check_layers.py ROOT
 
 Layers, lowest first: core, grid, coupling; then the drivers (md_driver,
 dpd_driver, mpm_driver) and the coupler, each above coupling and beside the
@@ -15,9 +15,7 @@ must point into the file's own layer or one below it:
 Stage and engine code (stage/ and engine/ folders, md_driver's stages, the
 coupler's stages and fit) reads a parameter by string key, node["key"], only
 inside its typed struct's reading function (a function whose name ends in
-from_yaml) or a validation check (a name starting with check). A baseline
-file may list, one "path count" a line, files not yet converted: each may
-hold at most that many such reads, so the count can only fall.
+from_yaml) or a validation check (a name starting with check).
 Exit 1 with one line per violation, naming file and line.
 """
 import re
@@ -137,18 +135,7 @@ def keyed_reads(text):
     return found
 
 
-def read_baseline(path):
-    allowed = {}
-    if path:
-        for line in Path(path).read_text().splitlines():
-            line = line.split("#", 1)[0].strip()
-            if line:
-                name, count = line.split()
-                allowed[name] = int(count)
-    return allowed
-
-
-def check(root, baseline):
+def check(root):
     problems = []
     for layer in LAYERS:
         for path in sorted((root / layer).rglob("*")):
@@ -160,13 +147,12 @@ def check(root, baseline):
             if not is_stage_or_engine(rel):
                 continue
             reads = keyed_reads(text)
-            limit = baseline.get(str(rel), 0)
-            if len(reads) > limit:
+            if reads:
                 where = ", ".join(f"{n} ({f})" for n, f in reads[:6])
                 more = "" if len(reads) <= 6 else f" and {len(reads) - 6} more"
                 problems.append(
                     f"{rel}: {len(reads)} parameter reads by string key outside a from_yaml "
-                    f"reader (allowed {limit}): lines {where}{more}")
+                    f"reader: lines {where}{more}")
     return problems
 
 
@@ -174,8 +160,7 @@ def main(argv):
     if not argv:
         sys.exit(__doc__)
     root = Path(argv[0]).resolve()
-    baseline = read_baseline(argv[2]) if argv[1:2] == ["--baseline"] else {}
-    problems = check(root, baseline)
+    problems = check(root)
     for p in problems:
         print(p)
     if problems:
