@@ -228,6 +228,43 @@ GridFieldWriter::GridFieldWriter(MPI_Comm comm, const std::string& base,
 
 void GridFieldWriter::write_frame(std::int64_t step, double time,
                                   const std::vector<Field>& fields) {
+  check_frame(step, time, fields);
+  auto group = h5::require_group(file_.id(), step_group(step));
+  // Taken even if a write below fails: the group exists now, and a retry of
+  // the step should be refused with a message, not fail in HDF5.
+  steps_.insert(step);
+  write_int64_attribute(group.id(), "step", step);
+  h5::write_attribute(group.id(), "time", time);
+  std::string failed = write_datasets(group.id(), step, fields);
+  // Flushing before the XDMF names the frame: a crash afterwards leaves a
+  // readable file holding every frame the XDMF lists.
+  if (H5Fflush(file_.id(), H5F_SCOPE_GLOBAL) < 0 && failed.empty()) {
+    failed = fmt::format("{}: flushing step {} failed", h5_path_, step);
+  }
+  throw_if_any(comm_, failed);
+  publish_frame(step, time, fields);
+}
+
+void GridFieldWriter::check_frame(std::int64_t step, double time,
+                                  const std::vector<Field>& fields) const {
+  std::string error = frame_error(step, time, fields);
+  if (!error.empty()) error = fmt::format("{}: step {}: {}", h5_path_, step, error);
+  throw_if_any(comm_, error);
+
+  Fnv1a same;
+  same.add(static_cast<std::uint64_t>(step)).add(time);
+  for (const auto& f : fields) {
+    same.add(f.name).add(f.unit).add(static_cast<std::uint64_t>(f.components));
+  }
+  require_same_everywhere(
+      comm_, same.value(),
+      fmt::format("{}: ranks disagree on the step, time or fields (names, units, components) of "
+                  "step {}",
+                  h5_path_, step));
+}
+
+std::string GridFieldWriter::frame_error(std::int64_t step, double time,
+                                         const std::vector<Field>& fields) const {
   std::string error;
   std::set<std::string> names;
   if (!std::isfinite(time)) {
@@ -251,29 +288,14 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
       error = fmt::format("field '{}' has no data", f.name);
     }
   }
-  if (!error.empty()) error = fmt::format("{}: step {}: {}", h5_path_, step, error);
-  throw_if_any(comm_, error);
+  return error;
+}
 
-  Fnv1a same;
-  same.add(static_cast<std::uint64_t>(step)).add(time);
-  for (const auto& f : fields) {
-    same.add(f.name).add(f.unit).add(static_cast<std::uint64_t>(f.components));
-  }
-  require_same_everywhere(
-      comm_, same.value(),
-      fmt::format("{}: ranks disagree on the step, time or fields (names, units, components) of "
-                  "step {}",
-                  h5_path_, step));
-
+std::string GridFieldWriter::write_datasets(hid_t group, std::int64_t step,
+                                            const std::vector<Field>& fields) const {
   const auto n = grid_.nodes_per_axis();
   const auto e = owned_.extent();
   const auto& lo = owned_.lo;
-  auto group = h5::require_group(file_.id(), step_group(step));
-  // Taken even if a write below fails: the group exists now, and a retry of
-  // the step should be refused with a message, not fail in HDF5.
-  steps_.insert(step);
-  write_int64_attribute(group.id(), "step", step);
-  h5::write_attribute(group.id(), "time", time);
   h5::Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   // The boxes tile the grid, so every value is written once; a fill pass
   // would only double the I/O (parallel HDF5 allocates, and fills, early).
@@ -287,7 +309,7 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
     const hsize_t start[4] = {u(lo[2]), u(lo[1]), u(lo[0]), 0};
     const hsize_t count[4] = {u(e[2]), u(e[1]), u(e[0]), 3};
     h5::Handle fspace(H5Screate_simple(rank_dims, dims, nullptr), H5Sclose);
-    h5::Handle ds(H5Dcreate2(group.id(), f.name.c_str(), H5T_IEEE_F64LE, fspace.id(), H5P_DEFAULT,
+    h5::Handle ds(H5Dcreate2(group, f.name.c_str(), H5T_IEEE_F64LE, fspace.id(), H5P_DEFAULT,
                              dcpl.id(), H5P_DEFAULT),
                   H5Dclose);
     // The owned block in memory, i fastest then components, is exactly a
@@ -308,13 +330,11 @@ void GridFieldWriter::write_frame(std::int64_t step, double time,
     }
     h5::write_attribute(ds.id(), "unit", f.unit);
   }
-  // Flushing before the XDMF names the frame: a crash afterwards leaves a
-  // readable file holding every frame the XDMF lists.
-  if (H5Fflush(file_.id(), H5F_SCOPE_GLOBAL) < 0 && failed.empty()) {
-    failed = fmt::format("{}: flushing step {} failed", h5_path_, step);
-  }
-  throw_if_any(comm_, failed);
+  return failed;
+}
 
+void GridFieldWriter::publish_frame(std::int64_t step, double time,
+                                    const std::vector<Field>& fields) {
   ++frames_;
   if (rank_ == 0) frame_xml_.push_back(frame_xml(step, time, fields));
   std::string xdmf_error;

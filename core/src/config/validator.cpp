@@ -183,39 +183,10 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
     return {};
   }
   switch (p.kind) {
-    case ParamKind::kInteger: {
-      long long v = 0;
-      try {
-        v = node.as<long long>();
-      } catch (const YAML::Exception&) {
-        error(node, path, fmt::format("expected an integer, got '{}'", clipped(s)));
-        return {};
-      }
-      // Unless a key says otherwise, integers are counts that drivers hold
-      // in an int: a larger value would be cut, not refused, at run time.
-      if (!p.max && v > INT_MAX) {
-        error(node, path, fmt::format("value {} is too large: at most {}", v, INT_MAX));
-        return {};
-      }
-      if (!p.min && v < INT_MIN) {
-        error(node, path, fmt::format("value {} is too small: at least {}", v, INT_MIN));
-        return {};
-      }
-      if (!check_range(p, static_cast<double>(v), node, path)) return {};
-      return YAML::Node(v);
-    }
-    case ParamKind::kReal: {
-      if (p.allow_auto && s == "auto") return YAML::Node("auto");
-      double v = 0.0;
-      try {
-        v = units::parse_quantity(s, p.dimension);
-      } catch (const Error& e) {
-        error(node, path, fmt::format("expected {}: {}", p.type_text(), e.what()));
-        return {};
-      }
-      if (!check_range(p, v, node, path)) return {};
-      return YAML::Node(v);
-    }
+    case ParamKind::kInteger:
+      return check_integer(p, node, path);
+    case ParamKind::kReal:
+      return check_real(p, node, path);
     case ParamKind::kBoolean: {
       try {
         return YAML::Node(node.as<bool>());
@@ -236,15 +207,8 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
       }
       return YAML::Node(s);
     }
-    case ParamKind::kFile: {
-      std::filesystem::path f(s);
-      if (f.is_relative()) f = std::filesystem::path(file_).parent_path() / f;
-      if (const std::string problem = file_problem(f); !problem.empty()) {
-        error(node, path, fmt::format("file '{}' {}", clipped(f.string(), 300), problem));
-        return {};
-      }
-      return YAML::Node(std::filesystem::absolute(f).lexically_normal().string());
-    }
+    case ParamKind::kFile:
+      return check_file(node, path);
     case ParamKind::kPath:
       if (s.empty()) {
         error(node, path, "path is empty");
@@ -263,6 +227,54 @@ YAML::Node Validator::check_scalar(const Param& p, const YAML::Node& node,
       break;
   }
   return {};
+}
+
+YAML::Node Validator::check_integer(const Param& p, const YAML::Node& node,
+                                    const std::string& path) {
+  long long v = 0;
+  try {
+    v = node.as<long long>();
+  } catch (const YAML::Exception&) {
+    error(node, path, fmt::format("expected an integer, got '{}'", clipped(node.Scalar())));
+    return {};
+  }
+  // Unless a key says otherwise, integers are counts that drivers hold
+  // in an int: a larger value would be cut, not refused, at run time.
+  if (!p.max && v > INT_MAX) {
+    error(node, path, fmt::format("value {} is too large: at most {}", v, INT_MAX));
+    return {};
+  }
+  if (!p.min && v < INT_MIN) {
+    error(node, path, fmt::format("value {} is too small: at least {}", v, INT_MIN));
+    return {};
+  }
+  if (!check_range(p, static_cast<double>(v), node, path)) return {};
+  return YAML::Node(v);
+}
+
+YAML::Node Validator::check_real(const Param& p, const YAML::Node& node, const std::string& path) {
+  const std::string& s = node.Scalar();
+  if (p.allow_auto && s == "auto") return YAML::Node("auto");
+  double v = 0.0;
+  try {
+    v = units::parse_quantity(s, p.dimension);
+  } catch (const Error& e) {
+    error(node, path, fmt::format("expected {}: {}", p.type_text(), e.what()));
+    return {};
+  }
+  if (!check_range(p, v, node, path)) return {};
+  return YAML::Node(v);
+}
+
+YAML::Node Validator::check_file(const YAML::Node& node, const std::string& path) {
+  // Relative to the config file, so that a config means the same from any folder.
+  std::filesystem::path f(node.Scalar());
+  if (f.is_relative()) f = std::filesystem::path(file_).parent_path() / f;
+  if (const std::string problem = file_problem(f); !problem.empty()) {
+    error(node, path, fmt::format("file '{}' {}", clipped(f.string(), 300), problem));
+    return {};
+  }
+  return YAML::Node(std::filesystem::absolute(f).lexically_normal().string());
 }
 
 void Validator::check_unique_keys(const YAML::Node& node, const std::string& path) {
@@ -333,18 +345,7 @@ void Validator::check_only_with(const std::vector<const Param*>& fields, const Y
 }
 
 YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::string& path) {
-  if (p.allow_reference && is_reference(node)) {
-    Reference r;
-    r.key_path = path;
-    r.target = node["from"].Scalar();
-    r.line = node["from"].Mark().line + 1;
-    r.column = node["from"].Mark().column + 1;
-    r.wants = p.kind == ParamKind::kTable ? OutputSpec::Shape::kTable
-              : p.kind == ParamKind::kMap ? OutputSpec::Shape::kMap
-                                          : OutputSpec::Shape::kScalar;
-    references_.push_back(r);
-    return YAML::Clone(node);
-  }
+  if (p.allow_reference && is_reference(node)) return record_stage_output_reference(p, node, path);
   switch (p.kind) {
     case ParamKind::kTable:
       error(node, path,
@@ -352,107 +353,131 @@ YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::s
                         "got {}",
                         shown(node)));
       return {};
-    case ParamKind::kMap: {
-      if (!node.IsMap()) {
-        error(node, path, fmt::format("expected a map, got {}", shown(node)));
-        return {};
-      }
-      std::string variant;
-      if (!p.discriminator.empty()) {
-        const YAML::Node d = node[p.discriminator];
-        if (d.IsDefined() && d.IsScalar()) variant = d.Scalar();
-      }
-      std::vector<const Param*> fields = p.fields_for(variant);
-      if (p.one_key && node.size() != 1) {
-        std::vector<std::string> names;
-        for (const auto* f : fields) names.push_back(f->name);
-        error(
-            node, path,
-            fmt::format("takes exactly one of {}; {} given", fmt::join(names, ", "), node.size()));
-        return {};
-      }
-      if (!p.discriminator.empty() && !p.variants.count(variant)) {
-        // Only validate the common keys; the unknown variant is reported by the
-        // discriminator's choice check. Extra keys would only add noise.
-        YAML::Node partial(YAML::NodeType::Map);
-        for (const auto* f : fields) {
-          if (node[f->name]) partial[f->name] = node[f->name];
-        }
-        return check_fields(fields, node[p.discriminator].IsDefined() ? partial : node, path);
-      }
-      return check_fields(fields, node, path);
-    }
-    case ParamKind::kMapOf: {
-      if (!node.IsMap()) {
-        error(node, path, fmt::format("expected a map of named entries, got {}", shown(node)));
-        return {};
-      }
-      YAML::Node out(YAML::NodeType::Map);
-      check_unique_keys(node, path);
-      for (const auto& kv : node) {
-        const auto key = kv.first.Scalar();
-        const auto child_path = join_path(path, key);
-        if (!is_name(key)) {
-          error(kv.first, join_path(path, clipped(key)),
-                fmt::format("'{}' is not a valid name", clipped(key)));
-          continue;
-        }
-        out[key] = check(p.fields[0], kv.second, child_path);
-      }
-      return out;
-    }
+    case ParamKind::kMap:
+      return check_map(p, node, path);
+    case ParamKind::kMapOf:
+      return check_map_of(p, node, path);
     case ParamKind::kListOf:
     case ParamKind::kRealList:
-    case ParamKind::kIntList: {
-      if (!node.IsSequence()) {
-        error(node, path, fmt::format("expected a list, got {}", shown(node)));
-        return {};
-      }
-      if (p.min_length && node.size() < *p.min_length) {
-        error(node, path,
-              fmt::format("needs at least {} entries, has {}", *p.min_length, node.size()));
-      }
-      if (p.max_length && node.size() > *p.max_length) {
-        error(node, path,
-              fmt::format("takes at most {} entries, has {}", *p.max_length, node.size()));
-      }
-      Param element;
-      if (p.kind == ParamKind::kListOf) {
-        element = p.fields[0];
-      } else {
-        element = p;
-        element.kind = p.kind == ParamKind::kRealList ? ParamKind::kReal : ParamKind::kInteger;
-      }
-      YAML::Node out(YAML::NodeType::Sequence);
-      for (size_t i = 0; i < node.size(); ++i) {
-        out.push_back(check(element, node[i], fmt::format("{}[{}]", path, i)));
-      }
-      return out;
-    }
-    default: {
-      YAML::Node out = check_scalar(p, node, path);
-      if (p.names_material && out.IsDefined() && !out.IsNull()) {
-        Reference r;
-        r.type = Reference::Target::kMaterial;
-        r.key_path = path;
-        r.target = node.Scalar();
-        r.line = node.Mark().line + 1;
-        r.column = node.Mark().column + 1;
-        references_.push_back(r);
-      }
-      if (!p.stage_kinds.empty() && out.IsDefined() && !out.IsNull()) {
-        Reference r;
-        r.type = Reference::Target::kStage;
-        r.key_path = path;
-        r.target = node.Scalar();
-        r.kinds = p.stage_kinds;
-        r.line = node.Mark().line + 1;
-        r.column = node.Mark().column + 1;
-        references_.push_back(r);
-      }
-      return out;
-    }
+    case ParamKind::kIntList:
+      return check_list(p, node, path);
+    default:
+      return check_leaf(p, node, path);
   }
+}
+
+YAML::Node Validator::record_stage_output_reference(const Param& p, const YAML::Node& node,
+                                                    const std::string& path) {
+  Reference r;
+  r.key_path = path;
+  r.target = node["from"].Scalar();
+  r.line = node["from"].Mark().line + 1;
+  r.column = node["from"].Mark().column + 1;
+  r.wants = p.kind == ParamKind::kTable ? OutputSpec::Shape::kTable
+            : p.kind == ParamKind::kMap ? OutputSpec::Shape::kMap
+                                        : OutputSpec::Shape::kScalar;
+  references_.push_back(r);
+  return YAML::Clone(node);
+}
+
+YAML::Node Validator::check_map(const Param& p, const YAML::Node& node, const std::string& path) {
+  if (!node.IsMap()) {
+    error(node, path, fmt::format("expected a map, got {}", shown(node)));
+    return {};
+  }
+  std::string variant;
+  if (!p.discriminator.empty()) {
+    const YAML::Node d = node[p.discriminator];
+    if (d.IsDefined() && d.IsScalar()) variant = d.Scalar();
+  }
+  std::vector<const Param*> fields = p.fields_for(variant);
+  if (p.one_key && node.size() != 1) {
+    std::vector<std::string> names;
+    for (const auto* f : fields) names.push_back(f->name);
+    error(node, path,
+          fmt::format("takes exactly one of {}; {} given", fmt::join(names, ", "), node.size()));
+    return {};
+  }
+  if (!p.discriminator.empty() && !p.variants.count(variant)) {
+    // Only validate the common keys; the unknown variant is reported by the
+    // discriminator's choice check. Extra keys would only add noise.
+    YAML::Node partial(YAML::NodeType::Map);
+    for (const auto* f : fields) {
+      if (node[f->name]) partial[f->name] = node[f->name];
+    }
+    return check_fields(fields, node[p.discriminator].IsDefined() ? partial : node, path);
+  }
+  return check_fields(fields, node, path);
+}
+
+YAML::Node Validator::check_map_of(const Param& p, const YAML::Node& node,
+                                   const std::string& path) {
+  if (!node.IsMap()) {
+    error(node, path, fmt::format("expected a map of named entries, got {}", shown(node)));
+    return {};
+  }
+  YAML::Node out(YAML::NodeType::Map);
+  check_unique_keys(node, path);
+  for (const auto& kv : node) {
+    const auto key = kv.first.Scalar();
+    const auto child_path = join_path(path, key);
+    if (!is_name(key)) {
+      error(kv.first, join_path(path, clipped(key)),
+            fmt::format("'{}' is not a valid name", clipped(key)));
+      continue;
+    }
+    out[key] = check(p.fields[0], kv.second, child_path);
+  }
+  return out;
+}
+
+YAML::Node Validator::check_list(const Param& p, const YAML::Node& node, const std::string& path) {
+  if (!node.IsSequence()) {
+    error(node, path, fmt::format("expected a list, got {}", shown(node)));
+    return {};
+  }
+  if (p.min_length && node.size() < *p.min_length) {
+    error(node, path, fmt::format("needs at least {} entries, has {}", *p.min_length, node.size()));
+  }
+  if (p.max_length && node.size() > *p.max_length) {
+    error(node, path, fmt::format("takes at most {} entries, has {}", *p.max_length, node.size()));
+  }
+  Param element;
+  if (p.kind == ParamKind::kListOf) {
+    element = p.fields[0];
+  } else {
+    element = p;
+    element.kind = p.kind == ParamKind::kRealList ? ParamKind::kReal : ParamKind::kInteger;
+  }
+  YAML::Node out(YAML::NodeType::Sequence);
+  for (size_t i = 0; i < node.size(); ++i) {
+    out.push_back(check(element, node[i], fmt::format("{}[{}]", path, i)));
+  }
+  return out;
+}
+
+YAML::Node Validator::check_leaf(const Param& p, const YAML::Node& node, const std::string& path) {
+  YAML::Node out = check_scalar(p, node, path);
+  if (p.names_material && out.IsDefined() && !out.IsNull()) {
+    Reference r;
+    r.type = Reference::Target::kMaterial;
+    r.key_path = path;
+    r.target = node.Scalar();
+    r.line = node.Mark().line + 1;
+    r.column = node.Mark().column + 1;
+    references_.push_back(r);
+  }
+  if (!p.stage_kinds.empty() && out.IsDefined() && !out.IsNull()) {
+    Reference r;
+    r.type = Reference::Target::kStage;
+    r.key_path = path;
+    r.target = node.Scalar();
+    r.kinds = p.stage_kinds;
+    r.line = node.Mark().line + 1;
+    r.column = node.Mark().column + 1;
+    references_.push_back(r);
+  }
+  return out;
 }
 
 }  // namespace pbms::config

@@ -270,14 +270,18 @@ std::vector<std::array<double, 3>> as_triples(const std::vector<double>& flat) {
   return out;
 }
 
-}  // namespace
+// The frame of `e` at `step`; nullopt for a fixed dataset.
+std::optional<hsize_t> frame_of(const Reader& r, const Element& e, std::int64_t step) {
+  if (!e.timed) return std::nullopt;
+  const auto j = Reader::frame_at(e, step);
+  if (!j) r.fail(fmt::format("'{}' has no entry at step {}", e.where, step));
+  return j;
+}
 
-ParticleSnapshot read_h5md_particles(const std::string& path, const std::string& group,
-                                     std::int64_t frame) {
-  Reader r(path);
-  const std::string base = "particles/" + pick_group(r, group);
-  ParticleSnapshot snap;
-
+// Reads the positions of `frame` into `snap`, with its step and time when
+// the positions are a time series; returns the particle count.
+hsize_t read_positions(const Reader& r, const std::string& base, std::int64_t frame,
+                       ParticleSnapshot& snap) {
   const auto position = r.element(base + "/position");
   if (!position) r.fail(fmt::format("missing '{}/position'", base));
   const auto pdims = dims_of(position->value.id());
@@ -300,16 +304,14 @@ ParticleSnapshot read_h5md_particles(const std::string& path, const std::string&
     snap.step = position->steps[*at];
     snap.time = r.time_of(*position, *at);
   }
-  // The frame of `e` at the chosen step; nullopt for a fixed dataset.
-  auto frame_of = [&](const Element& e) -> std::optional<hsize_t> {
-    if (!e.timed) return std::nullopt;
-    const auto j = Reader::frame_at(e, snap.step);
-    if (!j) r.fail(fmt::format("'{}' has no entry at step {}", e.where, snap.step));
-    return j;
-  };
-
   snap.x = as_triples(r.read<double>(*position, H5T_NATIVE_DOUBLE, at, {n, 3}));
+  return n;
+}
 
+// Velocities, images, ids and species at the snapshot's step, or their
+// defaults where the file has none.
+void read_per_particle(const Reader& r, const std::string& base, hsize_t n,
+                       ParticleSnapshot& snap) {
   snap.v.assign(n, {0.0, 0.0, 0.0});
   if (const auto velocity = r.element(base + "/velocity")) {
     const auto j = velocity->timed ? Reader::frame_at(*velocity, snap.step) : std::nullopt;
@@ -320,39 +322,41 @@ ParticleSnapshot read_h5md_particles(const std::string& path, const std::string&
   }
 
   if (const auto image = r.element(base + "/image")) {
-    const auto flat = r.read<int>(*image, H5T_NATIVE_INT, frame_of(*image), {n, 3});
+    const auto flat = r.read<int>(*image, H5T_NATIVE_INT, frame_of(r, *image, snap.step), {n, 3});
     snap.image.resize(n);
     for (size_t i = 0; i < n; ++i) snap.image[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
   }
 
   if (const auto id = r.element(base + "/id")) {
-    snap.id = r.read<std::int64_t>(*id, H5T_NATIVE_INT64, frame_of(*id), {n});
+    snap.id = r.read<std::int64_t>(*id, H5T_NATIVE_INT64, frame_of(r, *id, snap.step), {n});
   } else {
     snap.id.resize(n);
     for (hsize_t i = 0; i < n; ++i) snap.id[i] = static_cast<std::int64_t>(i);
   }
 
   if (const auto species = r.element(base + "/species")) {
-    snap.species = r.read<int>(*species, H5T_NATIVE_INT, frame_of(*species), {n});
+    snap.species = r.read<int>(*species, H5T_NATIVE_INT, frame_of(r, *species, snap.step), {n});
     if (written_by_lammps(r)) {
       for (int& s : snap.species) s -= 1;
     }
   } else {
     snap.species.assign(n, 0);
   }
+}
 
-  const std::string box = base + "/box";
+void require_3d_box(const Reader& r, const std::string& box) {
   if (!r.exists(box)) r.fail(fmt::format("missing group '{}'", box));
-  {
-    h5::Handle box_group = r.open(box);
-    if (H5Aexists(box_group.id(), "dimension") > 0) {
-      h5::Handle attr(H5Aopen(box_group.id(), "dimension", H5P_DEFAULT), H5Aclose);
-      int dim = 0;
-      H5Aread(attr.id(), H5T_NATIVE_INT, &dim);
-      if (dim != 3)
-        r.fail(fmt::format("'{}' has dimension {}; only 3-D boxes are supported", box, dim));
-    }
+  h5::Handle box_group = r.open(box);
+  if (H5Aexists(box_group.id(), "dimension") > 0) {
+    h5::Handle attr(H5Aopen(box_group.id(), "dimension", H5P_DEFAULT), H5Aclose);
+    int dim = 0;
+    H5Aread(attr.id(), H5T_NATIVE_INT, &dim);
+    if (dim != 3)
+      r.fail(fmt::format("'{}' has dimension {}; only 3-D boxes are supported", box, dim));
   }
+}
+
+void read_boundary(const Reader& r, const std::string& box, ParticleSnapshot& snap) {
   const auto boundary = r.string_attribute(box, "boundary");
   if (boundary.size() != 3) {
     r.fail(fmt::format("attribute 'boundary' of '{}' has {} entries, expected 3", box,
@@ -365,11 +369,14 @@ ParticleSnapshot read_h5md_particles(const std::string& path, const std::string&
     }
     snap.periodic[a] = boundary[a] == "periodic";
   }
+}
+
+void read_edges(const Reader& r, const std::string& box, ParticleSnapshot& snap) {
   const auto edges = r.element(box + "/edges");
   if (!edges) r.fail(fmt::format("missing '{}/edges'", box));
   const auto edims = dims_of(edges->value.id());
   const bool matrix = edims.size() == (edges->timed ? 3u : 2u);
-  const auto e = r.read<double>(*edges, H5T_NATIVE_DOUBLE, frame_of(*edges),
+  const auto e = r.read<double>(*edges, H5T_NATIVE_DOUBLE, frame_of(r, *edges, snap.step),
                                 matrix ? std::vector<hsize_t>{3, 3} : std::vector<hsize_t>{3});
   for (int a = 0; a < 3; ++a) {
     if (matrix) {
@@ -381,6 +388,21 @@ ParticleSnapshot read_h5md_particles(const std::string& path, const std::string&
     }
     snap.box_hi[a] = matrix ? e[4 * a] : e[a];
   }
+}
+
+}  // namespace
+
+ParticleSnapshot read_h5md_particles(const std::string& path, const std::string& group,
+                                     std::int64_t frame) {
+  Reader r(path);
+  const std::string base = "particles/" + pick_group(r, group);
+  ParticleSnapshot snap;
+  const hsize_t n = read_positions(r, base, frame, snap);
+  read_per_particle(r, base, n, snap);
+  const std::string box = base + "/box";
+  require_3d_box(r, box);
+  read_boundary(r, box, snap);
+  read_edges(r, box, snap);
   return snap;
 }
 

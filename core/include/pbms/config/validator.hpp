@@ -47,7 +47,18 @@ class Validator {
   [[nodiscard]] const std::string& file() const { return file_; }
 
  private:
+  // `{from: ...}` in place of a value: recorded for the workflow to resolve.
+  YAML::Node record_stage_output_reference(const Param& p, const YAML::Node& node,
+                                           const std::string& path);
+  YAML::Node check_map(const Param& p, const YAML::Node& node, const std::string& path);
+  YAML::Node check_map_of(const Param& p, const YAML::Node& node, const std::string& path);
+  YAML::Node check_list(const Param& p, const YAML::Node& node, const std::string& path);
+  // A scalar, and the material or stage it names, if its key names one.
+  YAML::Node check_leaf(const Param& p, const YAML::Node& node, const std::string& path);
   YAML::Node check_scalar(const Param& p, const YAML::Node& node, const std::string& path);
+  YAML::Node check_integer(const Param& p, const YAML::Node& node, const std::string& path);
+  YAML::Node check_real(const Param& p, const YAML::Node& node, const std::string& path);
+  YAML::Node check_file(const YAML::Node& node, const std::string& path);
   void check_unique_keys(const YAML::Node& node, const std::string& path);
   // Keys given although their only_with sibling resolved to another value.
   void check_only_with(const std::vector<const Param*>& fields, const YAML::Node& node,

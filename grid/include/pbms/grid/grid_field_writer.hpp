@@ -51,6 +51,15 @@ class GridFieldWriter {
   [[nodiscard]] const std::string& xdmf_path() const { return xdmf_path_; }
 
  private:
+  // Throws on every rank if any rank's arguments are bad or differ from
+  // another rank's.
+  void check_frame(std::int64_t step, double time, const std::vector<Field>& fields) const;
+  [[nodiscard]] std::string frame_error(std::int64_t step, double time,
+                                        const std::vector<Field>& fields) const;
+  // The first failure on this rank, or empty.
+  [[nodiscard]] std::string write_datasets(hid_t group, std::int64_t step,
+                                           const std::vector<Field>& fields) const;
+  void publish_frame(std::int64_t step, double time, const std::vector<Field>& fields);
   [[nodiscard]] std::string frame_xml(std::int64_t step, double time,
                                       const std::vector<Field>& fields) const;
   void write_xdmf() const;
