@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "pbms/coupling/body_handover.hpp"
 #include "pbms/protocol/messages.hpp"
+#include "pbms/protocol/wire.hpp"
 
 using namespace pbms::protocol;
 
@@ -140,4 +142,42 @@ TEST(Protocol, RefusesOtherVersionsAndDamage) {
   auto longer = bytes;
   longer.push_back(std::byte{1});
   EXPECT_THROW(unpack(longer.data(), longer.size()), pbms::Error);
+}
+
+// The concurrent stage's hand-over travels as a typed struct: every field,
+// fixed-size arrays included, comes back bit for bit, and a cut message is
+// refused rather than misread.
+TEST(Protocol, BodyHandoverRoundTrips) {
+  pbms::coupling::BodyHandover h;
+  h.groups = {"flyer", "target", "grip_left"};
+  h.band_lo = {3, -1, 0};
+  h.band_hi = {9, 12, 40};
+  h.reach = 11.0 + 1.0 / 3.0;
+  h.skin = 1.0;
+  h.points.push_back({7, {1.5, -2.25, 1e-300}, {0.1, 0.2, -0.3}, 508.37, 0b101u});
+  h.points.push_back({123456789012LL, {0.0, 7.23, 14.46}, {0.0, 0.0, 0.0}, 508.37, 0u});
+  pbms::protocol::Encoder e;
+  e.put(h);
+  const auto bytes = e.take();
+  pbms::protocol::Decoder d(bytes.data(), bytes.size());
+  pbms::coupling::BodyHandover back;
+  d.get(back);
+  EXPECT_TRUE(d.at_end());
+  EXPECT_EQ(back.groups, h.groups);
+  EXPECT_EQ(back.band_lo, h.band_lo);
+  EXPECT_EQ(back.band_hi, h.band_hi);
+  EXPECT_EQ(back.band().count(), h.band().count());
+  EXPECT_EQ(back.reach, h.reach);
+  EXPECT_EQ(back.skin, h.skin);
+  ASSERT_EQ(back.points.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(back.points[i].id, h.points[i].id);
+    EXPECT_EQ(back.points[i].x, h.points[i].x);
+    EXPECT_EQ(back.points[i].v, h.points[i].v);
+    EXPECT_EQ(back.points[i].mass, h.points[i].mass);
+    EXPECT_EQ(back.points[i].groups, h.points[i].groups);
+  }
+  pbms::protocol::Decoder cut(bytes.data(), bytes.size() - 5);
+  pbms::coupling::BodyHandover broken;
+  EXPECT_THROW(cut.get(broken), pbms::Error);
 }

@@ -223,7 +223,7 @@ class WorkflowLoader {
   }
 
   const StageKindSpec* stage_kind(const YAML::Node& kind_node, const std::string& sp) {
-    const std::string kind = kind_node.Scalar();
+    const std::string& kind = kind_node.Scalar();
     const StageKindSpec* spec = find_kind(drivers_, kind);
     if (!spec) {
       const auto kinds = all_kinds(drivers_);
@@ -374,7 +374,7 @@ class WorkflowLoader {
     if (!m[file_key]) return;
     const YAML::Node file_node = resolved_["materials"][name][file_key];
     if (!file_node || !file_node.IsScalar()) return;  // already reported
-    const std::string file = file_node.Scalar();
+    const std::string& file = file_node.Scalar();
     const Param* held = nullptr;
     for (const Param& p : kind.params) {
       if (p.name == key) held = &p;
