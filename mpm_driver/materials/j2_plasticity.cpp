@@ -9,8 +9,6 @@ namespace pbms::mpm {
 
 namespace {
 
-const ParameterRange kYoungsModulusRange = ParameterRange::positive();
-const ParameterRange kPoissonRatioRange = ParameterRange::open(-1.0, 0.5);
 const ParameterRange kYieldStressRange = ParameterRange::positive();
 // Softening (H < 0) makes the local problem ill-posed without regularisation.
 const ParameterRange kHardeningModulusRange = ParameterRange::non_negative();
@@ -32,35 +30,31 @@ J2Plasticity::J2Plasticity(double youngs_modulus, double poisson_ratio, double y
 config::MaterialKindSpec J2Plasticity::spec() {
   using config::Param;
   using units::Dimension;
-  return {
+  config::MaterialKindSpec s{
       std::string(kStyle),
       "MPM: von Mises plasticity with linear isotropic hardening (radial return)",
-      {density_param(),
-       ranged(Param::real("youngs_modulus", Dimension::kPressure, "Young's modulus E")
-                  .require()
-                  .referable(),
-              kYoungsModulusRange),
-       ranged(
-           Param::real("poisson_ratio", Dimension::kNone, "Poisson's ratio").def(0.3).referable(),
-           kPoissonRatioRange),
-       ranged(Param::real("yield_stress", Dimension::kPressure, "Initial yield stress")
-                  .require()
-                  .referable(),
-              kYieldStressRange),
-       ranged(Param::real("hardening_modulus", Dimension::kPressure,
-                          "Linear isotropic hardening modulus H")
-                  .def(0.0)
-                  .referable(),
-              kHardeningModulusRange),
-       ranged(
-           Param::real("zener_ratio", Dimension::kNone,
-                       "Anisotropy 2 C44/(C11 - C12) of a cubic crystal with cube axes along x, "
-                       "y, z; 1 is isotropic. Other values keep E and nu as the [100] pull's and "
-                       "set C44 to zener_ratio E/(2 (1 + nu)), e.g. a DPD crystal's "
-                       "{from: <dpd_elastic stage>.zener_ratio}")
-               .def(1.0)
-               .referable(),
-           kZenerRatioRange)}};
+      {density_param()}};
+  for (auto& p : isotropic_elastic_params()) s.params.push_back(std::move(p));
+  s.params.push_back(
+      ranged(Param::real("yield_stress", Dimension::kPressure, "Initial yield stress")
+                 .require()
+                 .referable(),
+             kYieldStressRange));
+  s.params.push_back(ranged(
+      Param::real("hardening_modulus", Dimension::kPressure, "Linear isotropic hardening modulus H")
+          .def(0.0)
+          .referable(),
+      kHardeningModulusRange));
+  s.params.push_back(ranged(
+      Param::real("zener_ratio", Dimension::kNone,
+                  "Anisotropy 2 C44/(C11 - C12) of a cubic crystal with cube axes along x, y, z; "
+                  "1 is isotropic. Other values keep E and nu as the [100] pull's and set C44 "
+                  "to zener_ratio E/(2 (1 + nu)), e.g. a DPD crystal's "
+                  "{from: <dpd_elastic stage>.zener_ratio}")
+          .def(1.0)
+          .referable(),
+      kZenerRatioRange));
+  return s;
 }
 
 std::unique_ptr<grid::Material> J2Plasticity::create(const MaterialParameters& params) {

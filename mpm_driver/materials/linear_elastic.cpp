@@ -6,14 +6,6 @@
 
 namespace pbms::mpm {
 
-namespace {
-
-const ParameterRange kYoungsModulusRange = ParameterRange::positive();
-// nu = 0.5 would make lambda infinite; nu <= -1 a negative shear modulus.
-const ParameterRange kPoissonRatioRange = ParameterRange::open(-1.0, 0.5);
-
-}  // namespace
-
 LinearElastic::LinearElastic(double youngs_modulus, double poisson_ratio) {
   check_parameter(kStyle, "youngs_modulus", youngs_modulus, kYoungsModulusRange);
   check_parameter(kStyle, "poisson_ratio", poisson_ratio, kPoissonRatioRange);
@@ -22,19 +14,11 @@ LinearElastic::LinearElastic(double youngs_modulus, double poisson_ratio) {
 }
 
 config::MaterialKindSpec LinearElastic::spec() {
-  using config::Param;
-  using units::Dimension;
-  return {
-      std::string(kStyle),
-      "MPM: isotropic linear elasticity, small strain with a Jaumann rate",
-      {density_param(),
-       ranged(Param::real("youngs_modulus", Dimension::kPressure, "Young's modulus E")
-                  .require()
-                  .referable(),
-              kYoungsModulusRange),
-       ranged(
-           Param::real("poisson_ratio", Dimension::kNone, "Poisson's ratio").def(0.3).referable(),
-           kPoissonRatioRange)}};
+  config::MaterialKindSpec s{std::string(kStyle),
+                             "MPM: isotropic linear elasticity, small strain with a Jaumann rate",
+                             {density_param()}};
+  for (auto& p : isotropic_elastic_params()) s.params.push_back(std::move(p));
+  return s;
 }
 
 std::unique_ptr<grid::Material> LinearElastic::create(const MaterialParameters& params) {

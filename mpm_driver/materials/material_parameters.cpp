@@ -52,6 +52,18 @@ config::Param density_param() {
       .referable();
 }
 
+std::vector<config::Param> isotropic_elastic_params() {
+  using config::Param;
+  using units::Dimension;
+  return {
+      ranged(Param::real("youngs_modulus", Dimension::kPressure, "Young's modulus E")
+                 .require()
+                 .referable(),
+             kYoungsModulusRange),
+      ranged(Param::real("poisson_ratio", Dimension::kNone, "Poisson's ratio").def(0.3).referable(),
+             kPoissonRatioRange)};
+}
+
 void check_parameter(std::string_view style, std::string_view name, double value,
                      const ParameterRange& range) {
   if (range.contains(value) && std::isfinite(value)) return;

@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pbms/config/param.hpp"
 
@@ -43,6 +44,13 @@ struct ParameterRange {
 // The initial mass density every MPM material kind takes (the body's, not
 // the constitutive model's).
 [[nodiscard]] config::Param density_param();
+
+// Isotropic elasticity's E and nu (linear_elastic, j2_plasticity): their
+// ranges, and their keys with those ranges and nu's default of 0.3.
+inline const ParameterRange kYoungsModulusRange = ParameterRange::positive();
+// nu = 0.5 would make lambda infinite; nu <= -1 a negative shear modulus.
+inline const ParameterRange kPoissonRatioRange = ParameterRange::open(-1.0, 0.5);
+[[nodiscard]] std::vector<config::Param> isotropic_elastic_params();
 
 // Throws pbms::Error unless range contains value.
 void check_parameter(std::string_view style, std::string_view name, double value,
