@@ -52,9 +52,20 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
   const double reach = cutoff_ + skin_;
   const double reach_sq = reach * reach;
 
-  std::array<double, 3> origin{};
-  std::array<double, 3> inv_cell{};
-  std::array<int, 3> cells{};
+  const CellGrid grid = fit_cell_grid(particles, box, reach);
+  bin_particles(particles, grid);
+  set_image_shifts(box);
+  list_pairs(particles, box, grid, rows, reach_sq);
+  if (keep_pair_ids_) store_pair_ids(particles, rows);
+  x_at_build_.assign(particles.x.begin(), particles.x.begin() + static_cast<std::ptrdiff_t>(rows));
+  ++builds_;
+}
+
+HalfNeighbourList::CellGrid HalfNeighbourList::fit_cell_grid(DpdParticles& particles,
+                                                             const OrthogonalBox& box,
+                                                             double reach) {
+  const std::size_t n = particles.size();
+  CellGrid grid;
   for (int a = 0; a < 3; ++a) {
     double lo = box.lo[a];
     double extent = box.length(a);
@@ -78,39 +89,50 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
       }
       extent = hi - lo;
     }
-    origin[a] = lo;
-    cells[a] = std::max(1, static_cast<int>(extent / reach));
+    grid.origin[a] = lo;
+    grid.cells[a] = std::max(1, static_cast<int>(extent / reach));
     // Cap the grid of a sparse free axis: more cells than particles only costs.
     const int cap = static_cast<int>(std::cbrt(static_cast<double>(n))) + 3;
-    if (!box.periodic[a]) cells[a] = std::min(cells[a], cap);
-    inv_cell[a] = extent > 0.0 ? cells[a] / extent : 0.0;
+    if (!box.periodic[a]) grid.cells[a] = std::min(grid.cells[a], cap);
+    grid.inv_cell[a] = extent > 0.0 ? grid.cells[a] / extent : 0.0;
   }
+  return grid;
+}
 
-  // Counting sort of particles into cells.
+// A counting sort, so that the pair search reads each cell's particles from
+// one contiguous run of in_cell_order_.
+void HalfNeighbourList::bin_particles(const DpdParticles& particles, const CellGrid& grid) {
+  const std::size_t n = particles.size();
+  const std::array<int, 3> cells = grid.cells;  // not re-read after each store to an int
   const int cell_count = cells[0] * cells[1] * cells[2];
   cell_of_.resize(n);
   cell_start_.assign(static_cast<std::size_t>(cell_count) + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     int c[3];
     for (int a = 0; a < 3; ++a) {
-      c[a] = std::clamp(static_cast<int>((particles.x[i][a] - origin[a]) * inv_cell[a]), 0,
-                        cells[a] - 1);
+      c[a] = std::clamp(static_cast<int>((particles.x[i][a] - grid.origin[a]) * grid.inv_cell[a]),
+                        0, cells[a] - 1);
     }
     cell_of_[i] = c[0] + cells[0] * (c[1] + cells[1] * c[2]);
     ++cell_start_[cell_of_[i] + 1];
   }
   for (int c = 0; c < cell_count; ++c) cell_start_[c + 1] += cell_start_[c];
   in_cell_order_.resize(n);
-  {
-    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) in_cell_order_[fill[cell_of_[i]]++] = static_cast<int>(i);
-  }
+  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) in_cell_order_[fill[cell_of_[i]]++] = static_cast<int>(i);
+}
 
+void HalfNeighbourList::set_image_shifts(const OrthogonalBox& box) {
   for (int code = 0; code < 27; ++code) {
     const int s[3] = {code % 3 - 1, (code / 3) % 3 - 1, code / 9 - 1};
     for (int a = 0; a < 3; ++a) shifts_[code][a] = box.periodic[a] ? s[a] * box.length(a) : 0.0;
   }
+}
 
+void HalfNeighbourList::list_pairs(const DpdParticles& particles, const OrthogonalBox& box,
+                                   const CellGrid& grid, std::size_t rows, double reach_sq) {
+  // A copy, not re-read after each push_back.
+  const std::array<int, 3> cells = grid.cells;
   first_.resize(rows + 1);
   entries_.clear();
   for (std::size_t i = 0; i < rows; ++i) {
@@ -154,18 +176,17 @@ void HalfNeighbourList::build(DpdParticles& particles, const OrthogonalBox& box,
     }
   }
   first_[rows] = entries_.size();
-  if (keep_pair_ids_) {
-    pair_ids_.resize(entries_.size());
-    for (std::size_t i = 0; i < rows; ++i) {
-      const auto id_i = static_cast<std::uint32_t>(particles.id[i]);
-      for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
-        const auto id_j = static_cast<std::uint32_t>(particles.id[neighbour(entries_[k])]);
-        pair_ids_[k] = (std::uint64_t{std::max(id_i, id_j)} << 32) | std::min(id_i, id_j);
-      }
+}
+
+void HalfNeighbourList::store_pair_ids(const DpdParticles& particles, std::size_t rows) {
+  pair_ids_.resize(entries_.size());
+  for (std::size_t i = 0; i < rows; ++i) {
+    const auto id_i = static_cast<std::uint32_t>(particles.id[i]);
+    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
+      const auto id_j = static_cast<std::uint32_t>(particles.id[neighbour(entries_[k])]);
+      pair_ids_[k] = (std::uint64_t{std::max(id_i, id_j)} << 32) | std::min(id_i, id_j);
     }
   }
-  x_at_build_.assign(particles.x.begin(), particles.x.begin() + static_cast<std::ptrdiff_t>(rows));
-  ++builds_;
 }
 
 bool HalfNeighbourList::needs_rebuild(const DpdParticles& particles) const {

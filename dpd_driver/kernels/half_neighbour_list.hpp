@@ -95,6 +95,22 @@ class HalfNeighbourList {
   }
 
  private:
+  // The cell grid of one build: cells per axis, edge lengths at least the
+  // reach, so that a pair can only span neighbouring cells.
+  struct CellGrid {
+    std::array<double, 3> origin{};    // corner of cell (0, 0, 0), Å
+    std::array<double, 3> inv_cell{};  // cells per Å
+    std::array<int, 3> cells{};
+  };
+  // Wraps the periodic axes (the only place that does) and sizes the grid.
+  static CellGrid fit_cell_grid(DpdParticles& particles, const OrthogonalBox& box, double reach);
+  void bin_particles(const DpdParticles& particles, const CellGrid& grid);
+  void set_image_shifts(const OrthogonalBox& box);
+  // Fills first_ and entries_ for the first `rows` particles.
+  void list_pairs(const DpdParticles& particles, const OrthogonalBox& box, const CellGrid& grid,
+                  std::size_t rows, double reach_sq);
+  void store_pair_ids(const DpdParticles& particles, std::size_t rows);
+
   double cutoff_;
   double skin_;
   long builds_ = 0;

@@ -49,34 +49,21 @@ void ShardlowPairOrder::build(const DpdParticles& particles, const OrthogonalBox
   scratch_.image.assign(particles.size(), {0, 0, 0});
   list_.build(scratch_, list_box);
 
+  const CellBounds bounds = keep_swept_pairs(particles, list_box, sweeps);
+  sort_kept_pairs(bounds);
+}
+
+ShardlowPairOrder::CellBounds ShardlowPairOrder::keep_swept_pairs(
+    const DpdParticles& particles, const OrthogonalBox& list_box,
+    const std::function<bool(const Vec3&)>& sweeps) {
   kept_.clear();
   id_key_.clear();
   std::array<int, 3> low{0, 0, 0}, high{-1, -1, -1};
   const HalfNeighbourList::Entry* entries = list_.entries();
   for (std::size_t row = 0; row < list_.particle_count(); ++row) {
     for (std::size_t k = list_.first(row); k < list_.first(row + 1); ++k) {
-      std::size_t a = row, b = HalfNeighbourList::neighbour(entries[k]);
-      const Vec3& s = list_.shift(HalfNeighbourList::shift_code(entries[k]));
-      ShardlowPair pair{a, b, {}, {}};
-      for (int ax = 0; ax < 3; ++ax) {
-        pair.shift[ax] = s[ax] + (scratch_.x[a][ax] - particles.x[a][ax]) -
-                         (scratch_.x[b][ax] - particles.x[b][ax]);
-      }
-      if (particles.id[a] > particles.id[b]) {
-        std::swap(a, b);
-        pair = {a, b, {-pair.shift[0], -pair.shift[1], -pair.shift[2]}, {}};
-      }
-      const Vec3 d = pair.separation(particles.x.data());
-      Vec3 centre{};
-      for (int ax = 0; ax < 3; ++ax) {
-        double m = particles.x[a][ax] - 0.5 * d[ax];
-        const double lo = box_.lo[ax];
-        if (list_box.periodic[ax]) m -= box_.length(ax) * std::floor((m - lo) / box_.length(ax));
-        int c = static_cast<int>(std::floor((m - lo - offset_[ax]) / width_[ax]));
-        if (list_box.periodic[ax]) c = (c % cells_[ax] + cells_[ax]) % cells_[ax];
-        pair.cell[ax] = c;
-        centre[ax] = lo + offset_[ax] + (c + 0.5) * width_[ax];
-      }
+      ShardlowPair pair = lower_id_first(particles, row, entries[k]);
+      const Vec3 centre = place_midpoint(particles, list_box, pair);
       if (!sweeps(centre)) continue;
       if (kept_.empty()) {
         low = high = pair.cell;
@@ -88,12 +75,53 @@ void ShardlowPairOrder::build(const DpdParticles& particles, const OrthogonalBox
       }
       kept_.push_back(pair);
       // Ids fit in 32 bits (check_pair_noise_ids).
-      id_key_.push_back(static_cast<std::uint64_t>(particles.id[a]) << 32 |
-                        static_cast<std::uint64_t>(particles.id[b]));
+      id_key_.push_back(static_cast<std::uint64_t>(particles.id[pair.i]) << 32 |
+                        static_cast<std::uint64_t>(particles.id[pair.j]));
     }
   }
+  return {low, high};
+}
 
-  // Counting sort into buckets of (colour, cell), then each bucket by ids.
+// The pair of list entry e of `row`, its shift taken back from the wrapped
+// scratch positions to the caller's.
+ShardlowPair ShardlowPairOrder::lower_id_first(const DpdParticles& particles, std::size_t row,
+                                               HalfNeighbourList::Entry e) const {
+  std::size_t a = row, b = HalfNeighbourList::neighbour(e);
+  const Vec3& s = list_.shift(HalfNeighbourList::shift_code(e));
+  ShardlowPair pair{a, b, {}, {}};
+  for (int ax = 0; ax < 3; ++ax) {
+    pair.shift[ax] =
+        s[ax] + (scratch_.x[a][ax] - particles.x[a][ax]) - (scratch_.x[b][ax] - particles.x[b][ax]);
+  }
+  if (particles.id[a] > particles.id[b]) {
+    std::swap(a, b);
+    pair = {a, b, {-pair.shift[0], -pair.shift[1], -pair.shift[2]}, {}};
+  }
+  return pair;
+}
+
+// Sets pair.cell to the cell of the pair's midpoint and returns that cell's
+// centre.
+Vec3 ShardlowPairOrder::place_midpoint(const DpdParticles& particles, const OrthogonalBox& list_box,
+                                       ShardlowPair& pair) const {
+  const Vec3 d = pair.separation(particles.x.data());
+  Vec3 centre{};
+  for (int ax = 0; ax < 3; ++ax) {
+    double m = particles.x[pair.i][ax] - 0.5 * d[ax];
+    const double lo = box_.lo[ax];
+    if (list_box.periodic[ax]) m -= box_.length(ax) * std::floor((m - lo) / box_.length(ax));
+    int c = static_cast<int>(std::floor((m - lo - offset_[ax]) / width_[ax]));
+    if (list_box.periodic[ax]) c = (c % cells_[ax] + cells_[ax]) % cells_[ax];
+    pair.cell[ax] = c;
+    centre[ax] = lo + offset_[ax] + (c + 0.5) * width_[ax];
+  }
+  return centre;
+}
+
+// A counting sort into buckets of (colour, cell), then each bucket by ids.
+void ShardlowPairOrder::sort_kept_pairs(const CellBounds& bounds) {
+  const std::array<int, 3>& low = bounds.low;
+  const std::array<int, 3>& high = bounds.high;
   std::array<std::size_t, 3> span{};
   for (int ax = 0; ax < 3; ++ax) span[ax] = static_cast<std::size_t>(high[ax] - low[ax] + 1);
   const std::size_t cells = span[0] * span[1] * span[2];

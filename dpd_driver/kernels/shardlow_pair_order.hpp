@@ -80,6 +80,21 @@ class ShardlowPairOrder {
   [[nodiscard]] const Vec3& cell_width() const { return width_; }
 
  private:
+  // The smallest box of cells that holds every kept pair's cell.
+  struct CellBounds {
+    std::array<int, 3> low{};
+    std::array<int, 3> high{};
+  };
+  // Fills kept_ and id_key_ from the list, in list order.
+  CellBounds keep_swept_pairs(const DpdParticles& particles, const OrthogonalBox& list_box,
+                              const std::function<bool(const Vec3&)>& sweeps);
+  [[nodiscard]] ShardlowPair lower_id_first(const DpdParticles& particles, std::size_t row,
+                                            HalfNeighbourList::Entry e) const;
+  Vec3 place_midpoint(const DpdParticles& particles, const OrthogonalBox& list_box,
+                      ShardlowPair& pair) const;
+  // Fills pairs_ and begin_ from kept_.
+  void sort_kept_pairs(const CellBounds& bounds);
+
   OrthogonalBox box_;
   std::array<int, 3> cells_{};
   Vec3 width_{};
