@@ -108,7 +108,6 @@ double DpdProbes::extent(const DpdEngine& engine, std::uint32_t mask, int axis) 
 
 std::vector<double> DpdProbes::sample(DpdEngine& engine, ThermoState& thermo) {
   std::vector<double> out;
-  const DpdParticles& p = engine.particles();
   for (Probe& probe : probes_) {
     switch (probe.kind) {
       case Kind::kTemperature:
