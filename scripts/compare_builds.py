@@ -9,7 +9,8 @@ in WORK/old/<name>/ and WORK/new/<name>/, with the same seeds and rank counts
 (the config's own). A side that already has a finished run is not run again,
 so the old side can run first and the new one later (--only). Then, per
 config, it compares:
-  - the exit code, and for a run that failed the error line, without timings;
+  - the exit code, and for a run that failed the error line, without timings
+    and with each checkout's path as <root>;
   - every value of summary.yaml but the timings (wall times, steps per
     second, seconds packing and waiting): bitwise, else the relative
     difference is printed;
@@ -134,21 +135,21 @@ def compare_results(old, new):
     return diffs, len(a)
 
 
-def error_line(work):
-    text = (work / "console.txt").read_text(errors="replace")
+def error_line(work, root):
+    text = (work / "console.txt").read_text(errors="replace").replace(str(root), "<root>")
     lines = [l for l in text.splitlines() if "error" in l.lower() or "failed" in l.lower()]
     if not lines:
         return ""
     return re.sub(r"\d+(\.\d+)? ?s\b", "<t>", lines[-1])
 
 
-def compare(config, old_work, new_work):
+def compare(config, old_work, new_work, old_root, new_root):
     rc_old = (old_work / "exit_code").read_text().strip()
     rc_new = (new_work / "exit_code").read_text().strip()
     if rc_old != rc_new:
         return False, [f"exit code {rc_old} vs {rc_new}"]
     if rc_old != "0":
-        a, b = error_line(old_work), error_line(new_work)
+        a, b = error_line(old_work, old_root), error_line(new_work, new_root)
         return a == b, [f"both exit {rc_old}: {a!r}" if a == b else f"errors: {a!r} vs {b!r}"]
     old_dir, new_dir = run_dir(old_work), run_dir(new_work)
     diffs, n = compare_summaries(old_dir / "summary.yaml", new_dir / "summary.yaml")
@@ -178,7 +179,7 @@ def main(argv):
         if only is not None:
             print(f"{config}: ran {only}", flush=True)
             continue
-        ok, lines = compare(config, old_work, new_work)
+        ok, lines = compare(config, old_work, new_work, old_root, new_root)
         same &= ok
         secs = [(w / "seconds").read_text().strip() for w in (old_work, new_work)]
         print(f"{'SAME' if ok else 'DIFF'} {config} ({secs[0]} s / {secs[1]} s)")
