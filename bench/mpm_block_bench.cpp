@@ -48,6 +48,38 @@ double stream_triad_bytes_per_s() {
   return 24.0 * static_cast<double>(n) / best;
 }
 
+// Seconds spent in each pass of the step over a round.
+struct PassTimes {
+  double p2g = 0.0;     // map_to_grid: the points' mass, momentum and forces to the nodes
+  double grid = 0.0;    // begin_step, the node sums' completion and the node update
+  double g2p = 0.0;     // map_to_points: new point velocities and the momentum remap
+  double stress = 0.0;  // update_stress_and_move: gradient, stress update, move
+  [[nodiscard]] double total() const { return p2g + grid + g2p + stress; }
+};
+
+void timed_step(MpmSolver& solver, MaterialPoints& pts, const BoundaryConditions& bc, double dt,
+                PassTimes& t) {
+  auto t0 = Clock::now();
+  const auto lap = [&t0](double& into) {
+    const auto now = Clock::now();
+    into += std::chrono::duration<double>(now - t0).count();
+    t0 = now;
+  };
+  solver.begin_step(pts);
+  lap(t.grid);
+  solver.map_to_grid(pts, bc, dt);
+  lap(t.p2g);
+  solver.complete_nodal_sums();
+  solver.update_nodes(bc, dt);
+  lap(t.grid);
+  solver.map_to_points(pts, bc, dt);
+  lap(t.g2p);
+  solver.complete_remap_sums();
+  lap(t.grid);
+  solver.update_stress_and_move(pts, bc, dt);
+  lap(t.stress);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,11 +120,18 @@ int main(int argc, char** argv) {
   solver.step(pts, bc, dt);  // warm-up: first touch of the grid arrays
   // On a shared machine one timing scatters by several per cent: the best
   // of two rounds of `steps` steps, as bench/dpd_morse does.
+  // The step's phases are timed one by one (a clock read costs tens of
+  // nanoseconds against tens of milliseconds a phase) to say which pass
+  // limits the step; the round's time is their sum.
   double elapsed = 1e30;
+  PassTimes best;
   for (int round = 0; round < 2; ++round) {
-    const auto t0 = Clock::now();
-    for (int n = 0; n < steps; ++n) solver.step(pts, bc, dt);
-    elapsed = std::min(elapsed, seconds_since(t0));
+    PassTimes t;
+    for (int n = 0; n < steps; ++n) timed_step(solver, pts, bc, dt, t);
+    if (t.total() < elapsed) {
+      elapsed = t.total();
+      best = t;
+    }
   }
   const double np = static_cast<double>(pts.size());
   const double rate = np * steps / elapsed;
@@ -118,6 +157,8 @@ int main(int argc, char** argv) {
       "# %zu points, %d steps in %.3f s (best of 2 rounds); %.0f bytes per point-step; STREAM "
       "triad %.2f GB/s\n",
       pts.size(), steps, elapsed, bytes_per_step / np, stream / 1e9);
+  const auto width = MpmSolver::simd_width();
+  std::printf("# grid step built for %s: %d points per SIMD pass\n", width.isa, width.lanes);
   // Final-state checksums (not timed): compare before/after a change to
   // check that the physics stayed within round-off.
   {
@@ -136,6 +177,19 @@ int main(int argc, char** argv) {
                 sf, sw);
     std::printf("# energy kinetic %.15e stored %.15e work %.15e\n", e.kinetic, e.stored, e.work);
   }
+  // Per pass: nanoseconds a point-step and the pass's own fraction of the
+  // roofline (its bytes above over its time). A pass near 1 is limited by
+  // memory; one far below it by its instructions.
+  const double per_point = 1e9 / (np * steps);
+  const auto pass = [&](const char* name, double seconds, double bytes) {
+    std::printf("# pass %-7s %6.2f ns/point-step  %5.1f %% of the step  roofline fraction %.3f\n",
+                name, seconds * per_point, 100.0 * seconds / elapsed,
+                bytes * np * steps / seconds / stream);
+  };
+  pass("p2g", best.p2g, pass1);
+  pass("g2p", best.g2p, pass2);
+  pass("stress", best.stress, pass3);
+  pass("grid", best.grid, grid_bytes / np);
   std::printf("BENCH mpm_particle_steps_per_s %.4g 1/s\n", rate);
   std::printf("BENCH mpm_roofline_fraction %.3f 1\n", fraction);
   return 0;

@@ -8,7 +8,7 @@
 
 #include "pbms/error.hpp"
 #include "pbms/grid/shape_function_linear.hpp"
-#include "pbms/simd/lanes8_transpose.hpp"
+#include "pbms/simd/lane_transpose.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::grid {
@@ -22,18 +22,18 @@ using Lanes4 = double __attribute__((vector_size(32), may_alias));
   __builtin_memcpy(&r, &l, sizeof l);
 }
 
-// Requests the entries of points p + kAhead .. p + kAhead + 7 of each
+// Requests the entries of points p + kAhead .. p + kAhead + W - 1 of each
 // array into the cache. The stress update reads and writes F and the state
 // (144 bytes a point) in blocks of 64 points; requested from the gradient
 // loop before it, 512 points ahead, they cut the update from 27 to 19 ns a
 // point. The same requests in P2G and G2P measured no gain.
 inline constexpr size_t kPrefetchAhead = 512;
-template <class... Arrays>
+template <int W, class... Arrays>
 [[gnu::always_inline]] inline void prefetch_ahead(size_t n, size_t p, const Arrays&... arrays) {
-  if (p + kPrefetchAhead + 8 > n) return;
+  if (p + kPrefetchAhead + W > n) return;
   const auto one = [p](const auto& a) {
     const char* b = reinterpret_cast<const char*>(a.data() + p + kPrefetchAhead);
-    for (size_t o = 0; o < 8 * sizeof(a[0]); o += 64) __builtin_prefetch(b + o);
+    for (size_t o = 0; o < W * sizeof(a[0]); o += 64) __builtin_prefetch(b + o);
   };
   (one(arrays), ...);
 }
@@ -94,6 +94,10 @@ struct LinearEval {
 };
 
 }  // namespace
+
+MpmSolver::SimdWidth MpmSolver::simd_width() {
+  return {kLanes, simd::kPointLanesIsa};
+}
 
 UnitSystem UnitSystem::metal() {
   return {1.0 / units::kBarPerEvPerA3, 1.0 / units::kMvv2e};
@@ -204,7 +208,7 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
     if (force && !dual) {
-      for (; first + 8 <= points.size(); first += 8)
+      for (; first + kLanes <= points.size(); first += kLanes)
         scatter_lanes(eval.kernel, points, bc, external, first);
     }
   }
@@ -258,38 +262,39 @@ void MpmSolver::scatter(const Eval& eval, const MaterialPoints& points,
   }
 }
 
-// The scalar loop's records and sums, in its order, for eight points: the
+// The scalar loop's records and sums, in its order, for kLanes points: the
 // stencil, volume and stress products run across lanes and are transposed
-// into per-point records and per-point corner weights (read as broadcasts).
+// into per-point records; each point's corner weights are read back as
+// broadcasts.
 void MpmSolver::scatter_lanes(const ShapeFunctionLinear::Kernel& kernel,
                               const MaterialPoints& points, const BoundaryConditions& bc,
                               bool external, size_t p) {
-  const LinearStencilLanes s = locate_lanes(kernel, points, p);
-  // [0]: N, [1..3]: its gradient; then [.][k][q] for point k, corner q.
-  Lanes8 wt[4][8];
+  constexpr int W = kLanes;
+  const LinearStencilLanes<W> s = locate_lanes(kernel, points, p);
+  // [0][q]: corner q's N, [1..3][q]: its gradient, across the points.
+  PointLanes wt[4][8];
   for (int q = 0; q < 8; ++q) {
-    Lanes8 g[3];
+    PointLanes g[3];
     s.dN(q, g);
     wt[0][q] = s.N(q);
     for (int a = 0; a < 3; ++a) wt[1 + a][q] = g[a];
   }
-  for (auto& t : wt) simd::transpose8(t);
   asm("" : "+m"(wt));  // broadcast loads, as keep_weights_in_memory
-  Lanes8 m, v0, v[3], F[9], t[9];
+  PointLanes m, v0, v[3], F[9], t[9];
   __builtin_memcpy(&m, &points.mass[p], sizeof m);
   __builtin_memcpy(&v0, &points.volume0[p], sizeof v0);
-  simd::deinterleave3(&points.v[p], v);
-  simd::load_records9(points.F[p].data(), F);
-  simd::load_records9(points.state[p].stress.voigt.data(), t);
+  simd::deinterleave3<W>(&points.v[p], v);
+  simd::load_records<W, 9>(points.F[p].data(), F);
+  simd::load_records<W, 9>(points.state[p].stress.voigt.data(), t);
   // Eigen's 3 x 3 determinant (F column by column: F(r, c) is F[3 c + r]).
-  const Lanes8 det = F[0] * (F[4] * F[8] - F[7] * F[5]) - F[3] * (F[1] * F[8] - F[7] * F[2]) +
-                     F[6] * (F[1] * F[5] - F[4] * F[2]);
-  const Lanes8 V = v0 * det * opt_.units.stress_volume_to_energy;
-  const Lanes8 w = -(1.0 * V);
-  const Lanes8 z{};
-  Lanes8 fext[3] = {z, z, z};
+  const PointLanes det = F[0] * (F[4] * F[8] - F[7] * F[5]) - F[3] * (F[1] * F[8] - F[7] * F[2]) +
+                         F[6] * (F[1] * F[5] - F[4] * F[2]);
+  const PointLanes V = v0 * det * opt_.units.stress_volume_to_energy;
+  const PointLanes w = -(1.0 * V);
+  const PointLanes z{};
+  PointLanes fext[3] = {z, z, z};
   if (external) [[unlikely]] {
-    for (size_t k = 0; k < 8; ++k) {
+    for (size_t k = 0; k < W; ++k) {
       const Vec3 f = external_force(points, bc, p + k);
       for (size_t a = 0; a < 3; ++a) fext[a][k] = f[a];
     }
@@ -297,26 +302,27 @@ void MpmSolver::scatter_lanes(const ShapeFunctionLinear::Kernel& kernel,
   // Built whole rather than patched lane by lane afterwards: patching kept
   // the array in memory, zeroed by a rep stos per eight points.
   static_assert(sums::kForce == 4);
-  Lanes8 pn[8] = {m, m * v[0], m * v[1], m * v[2], fext[0], fext[1], fext[2], z};
-  Lanes8 gx[8] = {z, z, z, z, w * t[0], w * t[5], w * t[4], z};
-  Lanes8 gy[8] = {z, z, z, z, w * t[5], w * t[1], w * t[3], z};
-  Lanes8 gz[8] = {z, z, z, z, w * t[4], w * t[3], w * t[2], z};
-  simd::transpose8(pn);
-  simd::transpose8(gx);
-  simd::transpose8(gy);
-  simd::transpose8(gz);
-  for (size_t k = 0; k < 8; ++k) {
+  const PointLanes pn[8] = {m, m * v[0], m * v[1], m * v[2], fext[0], fext[1], fext[2], z};
+  const PointLanes gx[8] = {z, z, z, z, w * t[0], w * t[5], w * t[4], z};
+  const PointLanes gy[8] = {z, z, z, z, w * t[5], w * t[1], w * t[3], z};
+  const PointLanes gz[8] = {z, z, z, z, w * t[4], w * t[3], w * t[2], z};
+  Lanes8 pr[W], gxr[W], gyr[W], gzr[W];  // per point, records of eight fields
+  simd::lanes_to_records8<W>(pn, pr);
+  simd::lanes_to_records8<W>(gx, gxr);
+  simd::lanes_to_records8<W>(gy, gyr);
+  simd::lanes_to_records8<W>(gz, gzr);
+  for (size_t k = 0; k < W; ++k) {
     NodeLanes* cell = sums_.data() + s.base[k];
     for (int q = 0; q < 8; ++q) {
       s.corner(cell, q)->lanes +=
-          wt[0][k][q] * pn[k] + wt[1][k][q] * gx[k] + wt[2][k][q] * gy[k] + wt[3][k][q] * gz[k];
+          wt[0][q][k] * pr[k] + wt[1][q][k] * gxr[k] + wt[2][q][k] * gyr[k] + wt[3][q][k] * gzr[k];
     }
   }
   for (size_t c = 0; c < bc.point_velocities.size(); ++c) {
-    for (size_t k = 0; k < 8; ++k) {
+    for (size_t k = 0; k < W; ++k) {
       if (!points.in_group(p + k, bc.point_velocities[c].group_mask)) continue;
       for (int q = 0; q < 8; ++q) {
-        const double N = wt[0][k][q];
+        const double N = wt[0][q][k];
         if (N > 0.0) rigid_[c][static_cast<size_t>(s.node(k, q))] += N * points.mass[p + k];
       }
     }
@@ -437,113 +443,117 @@ template <class Stencil>
   }
 }
 
-[[gnu::always_inline]] inline LinearStencilLanes MpmSolver::locate_lanes(
+[[gnu::always_inline]] inline LinearStencilLanes<MpmSolver::kLanes> MpmSolver::locate_lanes(
     const ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points, size_t p) const {
-  Lanes8 x[3];
-  simd::deinterleave3(&points.x[p], x);
+  PointLanes x[3];
+  simd::deinterleave3<kLanes>(&points.x[p], x);
   check_inside_lanes(points, p, x);
-  LinearStencilLanes s;
+  LinearStencilLanes<kLanes> s;
   kernel(x, s);
   return s;
 }
 
 void MpmSolver::check_inside_lanes(const MaterialPoints& points, size_t p,
-                                   const Lanes8 (&x)[3]) const {
+                                   const PointLanes (&x)[3]) const {
   const auto& lo = local_.origin();
   const auto& hi = local_.upper();
-  using Int8 = std::int64_t __attribute__((vector_size(64)));
-  Int8 in = (x[0] >= lo[0]) & (x[0] <= hi[0]);
+  using Mask = simd::IndexLanes<kLanes>;
+  Mask in = (x[0] >= lo[0]) & (x[0] <= hi[0]);
   in &= (x[1] >= lo[1]) & (x[1] <= hi[1]);
   in &= (x[2] >= lo[2]) & (x[2] <= hi[2]);
-  // All eight lanes set, by halving the vector three times.
-  in &= __builtin_shufflevector(in, in, 4, 5, 6, 7, 0, 1, 2, 3);
-  in &= __builtin_shufflevector(in, in, 2, 3, 0, 1, 2, 3, 0, 1);
-  in &= __builtin_shufflevector(in, in, 1, 0, 1, 0, 1, 0, 1, 0);
-  if (in[0] == 0) [[unlikely]] {
+  if (!simd::all_lanes_set<kLanes>(in)) [[unlikely]] {
     ShapeStencil unused;
-    for (size_t k = 0; k < 8; ++k) evaluate(points, p + k, unused);  // throws at the first
+    for (size_t k = 0; k < kLanes; ++k) evaluate(points, p + k, unused);  // throws at the first
   }
 }
 
 // The same sums as point_kinematics with the linear stencil, in the same
-// order, point k of the eight in lane k: node q's records for the eight
-// points are transposed into one register per field, so that each term of
-// L is one multiply-add for all eight.
+// order, point k of the kLanes in lane k: node q's records for the points
+// are transposed into one vector per field, so that each term of L is one
+// multiply-add for all of them.
 void MpmSolver::point_kinematics_lanes(const ShapeFunctionLinear::Kernel& kernel,
                                        const MaterialPoints& points, size_t p, MaterialBlock& b,
                                        size_t i, Vec3* carried) const {
+  constexpr int W = kLanes;
   // For the stress update of this block, which reads and writes both.
-  prefetch_ahead(points.size(), p, points.F, points.state);
-  const LinearStencilLanes s = locate_lanes(kernel, points, p);
-  Lanes8 L[9]{}, at[3]{};
+  prefetch_ahead<W>(points.size(), p, points.F, points.state);
+  const LinearStencilLanes<W> s = locate_lanes(kernel, points, p);
+  PointLanes L[9]{}, at[3]{};
   const NodeLanes* kin = kin_.data();
   for (int q = 0; q < 8; ++q) {
-    Lanes8 r[8];
-    for (size_t k = 0; k < 8; ++k) r[k] = s.corner(kin + s.base[k], q)->lanes;
-    simd::transpose8(r);
-    const Lanes8 N = s.N(q);
-    Lanes8 g[3];
+    const Lanes8* rec[W];
+    for (size_t k = 0; k < W; ++k) rec[k] = &s.corner(kin + s.base[k], q)->lanes;
+    PointLanes r[8];
+    simd::records8_to_lanes<W>(rec, r);
+    const PointLanes N = s.N(q);
+    PointLanes g[3];
     s.dN(q, g);
     for (int a = 0; a < 3; ++a) {
       for (int c = 0; c < 3; ++c) L[3 * a + c] += g[c] * r[a];
       at[a] += N * r[3 + a];
     }
   }
-  for (int k = 0; k < 9; ++k) __builtin_memcpy(&b.L[k][i], &L[k], sizeof(Lanes8));
-  simd::interleave3(at, carried);
+  for (int k = 0; k < 9; ++k) __builtin_memcpy(&b.L[k][i], &L[k], sizeof(PointLanes));
+  simd::interleave3<W>(at, carried);
 }
 
-// The scalar G2P loop's arithmetic, in its order, for eight points: their
-// corner weights come from one evaluation across lanes, transposed so that
-// each point's node loop reads its weights as broadcasts; the velocity
-// update runs across lanes.
+// The scalar G2P loop's arithmetic, in its order, for kLanes points: their
+// corner weights come from one evaluation across lanes, read back per
+// point as broadcasts; the velocity update runs across lanes.
 void MpmSolver::grid_to_points_lanes(const ShapeFunctionLinear::Kernel& kernel,
                                      MaterialPoints& points, const BoundaryConditions& bc, size_t p,
                                      double dt) {
-  const LinearStencilLanes s = locate_lanes(kernel, points, p);
-  Lanes8 w[8];  // w[k][q]: point k's weight at corner q
+  constexpr int W = kLanes;
+  const LinearStencilLanes<W> s = locate_lanes(kernel, points, p);
+  PointLanes w[8];  // w[q][k]: point k's weight at corner q
   for (int q = 0; q < 8; ++q) w[q] = s.N(q);
-  simd::transpose8(w);
   asm("" : "+m"(w));  // broadcast loads, as keep_weights_in_memory
   const NodeLanes* kin = kin_.data();
-  Lanes8 at[8];  // per point: lanes 0-2 acceleration, 3-5 velocity
-  for (size_t k = 0; k < 8; ++k) {
+  Lanes8 at[W];  // per point: lanes 0-2 acceleration, 3-5 velocity
+  for (size_t k = 0; k < W; ++k) {
     const NodeLanes* cell = kin + s.base[k];
     Lanes8 a{};
-    for (int q = 0; q < 8; ++q) a += w[k][q] * s.corner(cell, q)->lanes;
+    for (int q = 0; q < 8; ++q) a += w[q][k] * s.corner(cell, q)->lanes;
     at[k] = a;
   }
-  simd::transpose8(at);
-  Lanes8 v[3];
-  simd::deinterleave3(&points.v[p], v);
+  PointLanes f[8];  // the same, one vector per lane of the records
+  {
+    const Lanes8* rec[W];
+    for (size_t k = 0; k < W; ++k) rec[k] = &at[k];
+    simd::records8_to_lanes<W>(rec, f);
+  }
+  PointLanes v[3];
+  simd::deinterleave3<W>(&points.v[p], v);
   const double flip = opt_.flip;
-  for (int a = 0; a < 3; ++a) v[a] = flip * (v[a] + dt * at[a]) + (1.0 - flip) * at[a + 3];
-  simd::interleave3(v, &points.v[p]);
+  for (int a = 0; a < 3; ++a) v[a] = flip * (v[a] + dt * f[a]) + (1.0 - flip) * f[a + 3];
+  simd::interleave3<W>(v, &points.v[p]);
   if (!bc.point_velocities.empty()) [[unlikely]] {
-    for (size_t k = 0; k < 8; ++k) hold_prescribed(points, bc, p + k, points.v[p + k]);
-    simd::deinterleave3(&points.v[p], v);  // the remap takes the held velocities
+    for (size_t k = 0; k < W; ++k) hold_prescribed(points, bc, p + k, points.v[p + k]);
+    simd::deinterleave3<W>(&points.v[p], v);  // the remap takes the held velocities
   }
   if (opt_.stress_update == StressUpdate::kFirst) {
     // No remap: the points move with the grid velocity (s-8).
-    Vec3 vel[8];
-    simd::interleave3({at[3], at[4], at[5]}, vel);
-    for (size_t k = 0; k < 8; ++k) {
+    Vec3 vel[W];
+    simd::interleave3<W>({f[3], f[4], f[5]}, vel);
+    for (size_t k = 0; k < W; ++k) {
       hold_prescribed(points, bc, p + k, vel[k]);
       move_point(points, p + k, vel[k], dt);
     }
     return;
   }
-  Lanes8 m;
+  PointLanes m;
   __builtin_memcpy(&m, &points.mass[p], sizeof m);
-  Lanes8 pm[8] = {Lanes8{}, m * v[0], m * v[1], m * v[2], Lanes8{}, Lanes8{}, Lanes8{}, Lanes8{}};
-  simd::transpose8(pm);
+  const PointLanes z{};
+  const PointLanes pm[8] = {z, m * v[0], m * v[1], m * v[2], z, z, z, z};
+  Lanes8 pmr[W];
+  simd::lanes_to_records8<W>(pm, pmr);
   // Only the mass-and-momentum half of each record changes: half the stores.
-  for (size_t k = 0; k < 8; ++k) {
-    const Lanes4 pm4 = low_half(pm[k]);
+  for (size_t k = 0; k < W; ++k) {
+    const Lanes4 pm4 = low_half(pmr[k]);
     NodeLanes* cell = sums_.data() + s.base[k];
     for (int q = 0; q < 8; ++q) {
       NodeLanes* r = s.corner(cell, q);
-      set_low_half(*r, low_half(r->lanes) + w[k][q] * pm4);
+      set_low_half(*r, low_half(r->lanes) + w[q][k] * pm4);
     }
   }
 }
@@ -581,24 +591,27 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
   alignas(64) double J[K], v0[K], power_before[K], work_increment[K];
   static_assert(sizeof(Mat3) == 9 * sizeof(double));
   static_assert(sizeof(MaterialPointState) == 9 * sizeof(double));
-  // Eight points at a time by transposes (F is stored column by column),
+  // kLanes points at a time by transposes (F is stored column by column),
   // the rest point by point.
-  const size_t m8 = m - m % 8;
-  for (size_t i = 0; i < m8; i += 8) {
+  constexpr int W = kLanes;
+  constexpr size_t kBytes = sizeof(PointLanes);
+  const size_t mw = m - m % W;
+  for (size_t i = 0; i < mw; i += W) {
     const size_t p = p0 + i;
-    Lanes8 c[9];
-    simd::load_records9(points.F[p].data(), c);
+    PointLanes c[9];
+    simd::load_records<W, 9>(points.F[p].data(), c);
     for (int r = 0; r < 3; ++r) {
-      for (int col = 0; col < 3; ++col) __builtin_memcpy(&F[3 * r + col][i], &c[3 * col + r], 64);
+      for (int col = 0; col < 3; ++col)
+        __builtin_memcpy(&F[3 * r + col][i], &c[3 * col + r], kBytes);
     }
-    simd::load_records9(points.state[p].stress.voigt.data(), c);
-    for (int f = 0; f < 6; ++f) __builtin_memcpy(&b.stress[f][i], &c[f], 64);
-    __builtin_memcpy(&b.plastic_strain[i], &c[7], 64);
-    __builtin_memcpy(&b.internal_energy[i], &c[8], 64);
-    __builtin_memcpy(&b.density[i], &points.mass[p], 64);
-    __builtin_memcpy(&v0[i], &points.volume0[p], 64);
+    simd::load_records<W, 9>(points.state[p].stress.voigt.data(), c);
+    for (int f = 0; f < 6; ++f) __builtin_memcpy(&b.stress[f][i], &c[f], kBytes);
+    __builtin_memcpy(&b.plastic_strain[i], &c[7], kBytes);
+    __builtin_memcpy(&b.internal_energy[i], &c[8], kBytes);
+    __builtin_memcpy(&b.density[i], &points.mass[p], kBytes);
+    __builtin_memcpy(&v0[i], &points.volume0[p], kBytes);
   }
-  for (size_t i = m8; i < m; ++i) {
+  for (size_t i = mw; i < m; ++i) {
     const size_t p = p0 + i;
     const Mat3& f = points.F[p];
     for (int r = 0; r < 3; ++r) {
@@ -647,25 +660,26 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     const double power_after = stress_power_density(b, i) * v0[i] * J[i];
     work_increment[i] = 0.5 * dt * (power_before[i] + power_after) * kv;
   }
-  for (size_t i = 0; i < m8; i += 8) {
+  for (size_t i = 0; i < mw; i += W) {
     const size_t p = p0 + i;
-    Lanes8 c[9];
+    PointLanes c[9];
     for (int r = 0; r < 3; ++r) {
-      for (int col = 0; col < 3; ++col) __builtin_memcpy(&c[3 * col + r], &F[3 * r + col][i], 64);
+      for (int col = 0; col < 3; ++col)
+        __builtin_memcpy(&c[3 * col + r], &F[3 * r + col][i], kBytes);
     }
-    simd::store_records9(c, points.F[p].data());
-    for (int f = 0; f < 6; ++f) __builtin_memcpy(&c[f], &b.stress[f][i], 64);
-    __builtin_memcpy(&c[6], &b.density[i], 64);
-    __builtin_memcpy(&c[7], &b.plastic_strain[i], 64);
-    __builtin_memcpy(&c[8], &b.internal_energy[i], 64);
-    simd::store_records9(c, points.state[p].stress.voigt.data());
-    Lanes8 w, dw;
-    __builtin_memcpy(&w, &points.work[p], 64);
-    __builtin_memcpy(&dw, &work_increment[i], 64);
+    simd::store_records<W, 9>(c, points.F[p].data());
+    for (int f = 0; f < 6; ++f) __builtin_memcpy(&c[f], &b.stress[f][i], kBytes);
+    __builtin_memcpy(&c[6], &b.density[i], kBytes);
+    __builtin_memcpy(&c[7], &b.plastic_strain[i], kBytes);
+    __builtin_memcpy(&c[8], &b.internal_energy[i], kBytes);
+    simd::store_records<W, 9>(c, points.state[p].stress.voigt.data());
+    PointLanes w, dw;
+    __builtin_memcpy(&w, &points.work[p], kBytes);
+    __builtin_memcpy(&dw, &work_increment[i], kBytes);
     w += dw;
-    __builtin_memcpy(&points.work[p], &w, 64);
+    __builtin_memcpy(&points.work[p], &w, kBytes);
   }
-  for (size_t i = m8; i < m; ++i) {
+  for (size_t i = mw; i < m; ++i) {
     const size_t p = p0 + i;
     Mat3& f = points.F[p];
     for (int r = 0; r < 3; ++r) {
@@ -982,7 +996,8 @@ void MpmSolver::grid_to_points(const Eval& eval, MaterialPoints& points,
   const double flip = opt_.flip;
   size_t first = 0;
   if constexpr (std::is_same_v<Eval, LinearEval>) {
-    for (; first + 8 <= n; first += 8) grid_to_points_lanes(eval.kernel, points, bc, first, dt);
+    for (; first + kLanes <= n; first += kLanes)
+      grid_to_points_lanes(eval.kernel, points, bc, first, dt);
   }
   for (size_t p = first; p < n; ++p) {
     const auto& s = locate(eval, points, p);
@@ -1048,7 +1063,7 @@ void MpmSolver::stress_and_move(const Eval& eval, MaterialPoints& points,
     size_t i = 0;
     if constexpr (std::is_same_v<Eval, LinearEval>) {
       if (!opt_.ddmp) {
-        for (; i + 8 <= m; i += 8)
+        for (; i + kLanes <= m; i += kLanes)
           point_kinematics_lanes(eval.kernel, points, p0 + i, block, i, &vb[i]);
       }
     }

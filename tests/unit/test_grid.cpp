@@ -181,51 +181,6 @@ TEST(ShapeFunctionLinear, PartitionOfUnityCompletenessAndBounds) {
   EXPECT_LT(worst_moment, 1e-12);
 }
 
-// The eight-points-at-once evaluation must give each lane exactly the
-// single-point stencil (the MPM passes rely on it to match the point-by-point
-// code bit for bit): random points, plus points on cell faces, on nodes and on
-// the grid's upper faces.
-TEST(ShapeFunctionLinear, LanesKernelEqualsThePointKernelBitForBit) {
-  const auto g = test_grid();
-  const ShapeFunctionLinear::Kernel kernel(g);
-  std::mt19937_64 rng(7);
-  std::vector<Vec3> xs;
-  for (int i = 0; i < 4000; ++i) xs.push_back(random_point_in(g, rng));
-  const auto& o = g.origin();
-  const double h = g.cell_size();
-  const auto c = g.cells();
-  for (int i = 0; i <= c[0]; ++i) {
-    xs.push_back({o[0] + i * h, o[1] + 0.5 * h, o[2] + c[2] * h});  // faces, the top face
-    xs.push_back({o[0] + i * h, o[1] + c[1] * h, o[2]});            // nodes on the upper edge
-  }
-  while (xs.size() % 8 != 0) xs.push_back(xs[xs.size() % 7]);
-  for (size_t p = 0; p < xs.size(); p += 8) {
-    double column[3][8];
-    for (int d = 0; d < 3; ++d) {
-      for (int k = 0; k < 8; ++k)
-        column[d][k] = xs[p + static_cast<size_t>(k)][static_cast<size_t>(d)];
-    }
-    pbms::Lanes8 x[3];
-    std::memcpy(x, column, sizeof x);
-    LinearStencilLanes lanes;
-    kernel(x, lanes);
-    for (int k = 0; k < 8; ++k) {
-      LinearStencil one;
-      kernel(xs[p + static_cast<size_t>(k)], one);
-      for (int q = 0; q < 8; ++q) {
-        ASSERT_EQ(lanes.node(static_cast<size_t>(k), q), one.node[static_cast<size_t>(q)]);
-        pbms::Lanes8 dn[3];
-        lanes.dN(q, dn);
-        // Bitwise: the same operations in the same order.
-        ASSERT_EQ(lanes.N(q)[k], one.N[q]) << "point " << p + static_cast<size_t>(k);
-        ASSERT_EQ(dn[0][k], one.dNx[q]);
-        ASSERT_EQ(dn[1][k], one.dNy[q]);
-        ASSERT_EQ(dn[2][k], one.dNz[q]);
-      }
-    }
-  }
-}
-
 TEST(ShapeFunctionLinear, GradientIsTheDerivativeOfN) {
   const auto g = test_grid();
   const ShapeFunctionLinear sf;

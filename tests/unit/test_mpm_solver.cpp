@@ -9,6 +9,7 @@
 #include "pbms/grid/halo_sum.hpp"
 #include "pbms/grid/mpm_solver.hpp"
 #include "pbms/grid/shape_function.hpp"
+#include "points_in_cells.hpp"
 
 using namespace pbms;
 using namespace pbms::mpm;
@@ -26,19 +27,9 @@ std::vector<std::unique_ptr<Material>> elastic(double E, double nu) {
 // Points at n x n x n regular positions per cell of every cell in [lo, hi).
 void fill(MaterialPoints& pts, const grid::RegularGrid& g, std::array<int, 3> lo,
           std::array<int, 3> hi, int n, double rho) {
-  const double h = g.cell_size();
-  for (int k = lo[2]; k < hi[2]; ++k)
-    for (int j = lo[1]; j < hi[1]; ++j)
-      for (int i = lo[0]; i < hi[0]; ++i)
-        for (int c = 0; c < n; ++c)
-          for (int b = 0; b < n; ++b)
-            for (int a = 0; a < n; ++a) {
-              MaterialPointState s;
-              s.density = rho;
-              pts.add(static_cast<int64_t>(pts.size()),
-                      {h * (i + (a + 0.5) / n), h * (j + (b + 0.5) / n), h * (k + (c + 0.5) / n)},
-                      std::pow(h / n, 3), s, 0);
-            }
+  MaterialPointState s;
+  s.density = rho;
+  test::fill_cells(pts, g, lo, hi, n, s);
 }
 
 }  // namespace
@@ -101,72 +92,6 @@ TEST(MpmSolver, PatchTestHomogeneousStretchWithDdmp) {
     }
     EXPECT_GT(checked, 500) << (blended ? "blended" : "pure");
   }
-}
-
-// The linear style runs an inlined, vectorised stencil; any other style goes
-// through ShapeFunction::evaluate and the general stencil. The same linear
-// functions behind the general interface must give the same trajectory, up
-// to the order of round-off, with every optional term of a step switched on:
-// both stress updates, a FLIP/PIC blend, body force, a point load, a rigid
-// group and a node constraint. Without the loads and the rigid group the
-// linear passes run eight points at a time across SIMD lanes; a point count
-// that is not a multiple of eight leaves a tail for the point-by-point code.
-TEST(MpmSolver, InlinedLinearPathMatchesTheGeneralStencilPath) {
-  struct LinearBehindTheInterface final : grid::ShapeFunction {
-    void evaluate(const grid::RegularGrid& g, const std::array<double, 3>& x,
-                  grid::ShapeStencil& out) const override {
-      grid::ShapeFunctionRegistry::create("linear")->evaluate(g, x, out);
-    }
-    int support_nodes() const override { return 8; }
-    std::string_view name() const override { return "linear-behind-the-interface"; }
-  };
-  for (const bool loads : {true, false})
-    for (const auto update : {StressUpdate::kLast, StressUpdate::kFirst}) {
-      const double E = 200.0, nu = 0.3, rho = 1.0;
-      grid::RegularGrid g({0, 0, 0}, 1.0, {8, 7, 6});
-      SolverOptions opt;
-      opt.stress_update = update;
-      opt.flip = 0.9;
-      MpmSolver inlined(g, grid::ShapeFunctionRegistry::create("linear"), elastic(E, nu), opt);
-      MpmSolver general(g, std::make_unique<LinearBehindTheInterface>(), elastic(E, nu), opt);
-      MaterialPoints a;
-      fill(a, g, {1, 1, 1}, {7, 6, 5}, 2, rho);
-      for (size_t p = 0; p < a.size(); ++p) {
-        const auto& x = a.x[p];
-        a.v[p] = {0.3 * std::sin(0.7 * x[1]), 0.2 * std::cos(0.5 * x[0] + x[2]), 0.1 * x[0]};
-        a.groups[p] = (x[0] < 2 ? 1u : 0u) | (x[2] > 4 ? 2u : 0u);
-      }
-      for (const size_t p : {700, 333, 5}) a.erase(p);
-      ASSERT_NE(a.size() % 8, 0u);
-      MaterialPoints b = a;
-      BoundaryConditions bc;
-      if (loads) {
-        bc.body_acceleration = {0.0, 0.0, -0.05};
-        bc.loads.push_back({2u, {0.01, 0.0, 0.02}});
-        bc.point_velocities.push_back({1u, {true, false, false}, {0.05, 0.0, 0.0}});
-      }
-      bc.nodes.push_back({{{0, 0, 0}, {9, 8, 1}}, {false, false, true}, {0, 0, 0}});
-      const double dt = 0.2 * inlined.stable_time_step(a);
-      for (int step = 0; step < 40; ++step) {
-        inlined.step(a, bc, dt);
-        general.step(b, bc, dt);
-      }
-      double dx = 0, dv = 0, ds = 0, smax = 0;
-      for (size_t p = 0; p < a.size(); ++p) {
-        for (size_t c = 0; c < 3; ++c) {
-          dx = std::max(dx, std::abs(a.x[p][c] - b.x[p][c]));
-          dv = std::max(dv, std::abs(a.v[p][c] - b.v[p][c]));
-        }
-        for (int c = 0; c < 6; ++c) {
-          ds = std::max(ds, std::abs(a.state[p].stress[c] - b.state[p].stress[c]));
-          smax = std::max(smax, std::abs(a.state[p].stress[c]));
-        }
-      }
-      EXPECT_GT(smax, 1e-2);  // the run did deform the body
-      EXPECT_LT(dx, 1e-12);
-      EXPECT_LT(dv, 1e-12);
-      EXPECT_LT(ds, 1e-11 * smax);
-    }
 }
 
 // First axial mode of a bar fixed at x = 0 and free at x = L: the period is

@@ -19,6 +19,7 @@
 #include "pbms/grid/regular_grid.hpp"
 #include "pbms/grid/shape_function.hpp"
 #include "pbms/grid/shape_function_linear.hpp"
+#include "pbms/simd/point_lanes.hpp"
 
 namespace pbms::grid {
 
@@ -175,7 +176,19 @@ class MpmSolver {
   // Internal plus external nodal force of the last step, eV/Å.
   [[nodiscard]] const Vec3& nodal_force(size_t local) const { return node_force_[local]; }
 
+  // Points the linear passes take at once, one per SIMD lane: the width of
+  // the instruction set this build targets (simd/point_lanes.hpp).
+  static constexpr int kLanes = simd::kPointLanes;
+  // kLanes and its instruction set as compiled into the solver itself, for
+  // a bench or test that links a variant built for another set.
+  struct SimdWidth {
+    int lanes;
+    const char* isa;
+  };
+  static SimdWidth simd_width();
+
  private:
+  using PointLanes = simd::Lanes<kLanes>;
   enum class Phase {
     kBegin,
     kMapToGrid,
@@ -222,29 +235,31 @@ class MpmSolver {
   template <class Stencil>
   void point_kinematics(const MaterialPoints& points, size_t p, const Stencil& s, Mat3& L,
                         Vec3& carried) const;
-  // point_kinematics for the eight points p .. p + 7 at once, one per SIMD
+  // point_kinematics for the kLanes points from p at once, one per SIMD
   // lane, with the linear stencil and plain gradients: L into columns
-  // i .. i + 7 of b, the carried field into carried[0 .. 7].
+  // i .. i + kLanes - 1 of b, the carried field into carried[0 ..].
   void point_kinematics_lanes(const ShapeFunctionLinear::Kernel& kernel,
                               const MaterialPoints& points, size_t p, MaterialBlock& b, size_t i,
                               Vec3* carried) const;
-  // scatter() with forces for the eight points p .. p + 7 (linear stencil,
-  // no dual-domain part).
+  // scatter() with forces for the kLanes points from p (linear stencil, no
+  // dual-domain part).
   void scatter_lanes(const ShapeFunctionLinear::Kernel& kernel, const MaterialPoints& points,
                      const BoundaryConditions& bc, bool external, size_t p);
   [[nodiscard]] Vec3 external_force(const MaterialPoints& points, const BoundaryConditions& bc,
                                     size_t p) const;
-  // The grid-to-point pass for the eight points p .. p + 7 (linear
+  // The grid-to-point pass for the kLanes points from p (linear
   // stencil): the velocity update, then under update-stress-last the remap
   // of their momenta into sums_, under update-stress-first the move.
   void grid_to_points_lanes(const ShapeFunctionLinear::Kernel& kernel, MaterialPoints& points,
                             const BoundaryConditions& bc, size_t p, double dt);
-  // The stencils of points p .. p + 7, one per lane (locate() for eight).
-  [[nodiscard]] LinearStencilLanes locate_lanes(const ShapeFunctionLinear::Kernel& kernel,
-                                                const MaterialPoints& points, size_t p) const;
-  // Throws, naming the first of points p .. p + 7 outside this solver's
-  // box, if one is; x holds their coordinates across lanes.
-  void check_inside_lanes(const MaterialPoints& points, size_t p, const Lanes8 (&x)[3]) const;
+  // The stencils of the kLanes points from p, one per lane (locate() for
+  // kLanes points).
+  [[nodiscard]] LinearStencilLanes<kLanes> locate_lanes(const ShapeFunctionLinear::Kernel& kernel,
+                                                        const MaterialPoints& points,
+                                                        size_t p) const;
+  // Throws, naming the first of the kLanes points from p outside this
+  // solver's box, if one is; x holds their coordinates across lanes.
+  void check_inside_lanes(const MaterialPoints& points, size_t p, const PointLanes (&x)[3]) const;
   void nodal_gradient(const std::vector<Vec3>& v, std::vector<Mat3>& G) const;
   void build_dual(const MaterialPoints& points);
   void add_dual_force();

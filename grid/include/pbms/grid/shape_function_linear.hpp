@@ -9,6 +9,7 @@
 
 #include "pbms/grid/shape_function.hpp"
 #include "pbms/simd/lanes8.hpp"
+#include "pbms/simd/point_lanes.hpp"
 
 namespace pbms::grid {
 
@@ -43,18 +44,21 @@ inline void keep_weights_in_memory(LinearStencil& s) {
 }
 inline void keep_weights_in_memory(const ShapeStencil&) {}
 
-// The stencils of eight points at once, point k in lane k, for passes that
-// run across points. Per axis d, w[d][0] is the lower corner's factor
-// (1 - xi) and w[d][1] the upper's (xi); corner q = a + 2b + 4c takes
-// w[0][a] w[1][b] w[2][c], the same products, in the same order, as
-// LinearStencil's lane q, so both layouts give identical weights.
+// The stencils of W points at once, point k in lane k, for passes that
+// run across points (W = simd::kPointLanes). Per axis d, w[d][0] is the
+// lower corner's factor (1 - xi) and w[d][1] the upper's (xi); corner
+// q = a + 2b + 4c takes w[0][a] w[1][b] w[2][c], the same products, in the
+// same order, as LinearStencil's lane q, so both layouts give identical
+// weights.
+template <int W>
 struct LinearStencilLanes {
+  using Real = simd::Lanes<W>;
   // No member initialisers: the kernel writes every field, and zeroing
-  // the 576 bytes first (a rep stos per eight points that the compiler
-  // did not drop) cost the P2G pass several per cent.
-  alignas(64) std::array<std::int64_t, 8> base;  // each point's lower corner node
+  // the stencil first (a rep stos per eight points that the compiler did
+  // not drop) cost the P2G pass several per cent.
+  alignas(64) std::array<std::int64_t, W> base;  // each point's lower corner node
   std::int64_t stride_y, stride_z;               // node index steps along y and z
-  Lanes8 w[3][2];
+  Real w[3][2];
   double slope[3][2];  // d w[d][c] / d x_d: -1/h, +1/h
 
   [[nodiscard]] std::int64_t corner_offset(int q) const {
@@ -67,9 +71,9 @@ struct LinearStencilLanes {
   }
   // The node index of point k's corner q.
   [[nodiscard]] std::int64_t node(std::size_t k, int q) const { return base[k] + corner_offset(q); }
-  [[nodiscard]] Lanes8 N(int q) const { return w[0][q & 1] * w[1][(q >> 1) & 1] * w[2][q >> 2]; }
-  // The gradient of corner q's weight, one register per axis.
-  void dN(int q, Lanes8 (&g)[3]) const {
+  [[nodiscard]] Real N(int q) const { return w[0][q & 1] * w[1][(q >> 1) & 1] * w[2][q >> 2]; }
+  // The gradient of corner q's weight, one vector per axis.
+  void dN(int q, Real (&g)[3]) const {
     const int a = q & 1, b = (q >> 1) & 1, c = q >> 2;
     g[0] = slope[0][a] * w[1][b] * w[2][c];
     g[1] = w[0][a] * slope[1][b] * w[2][c];
@@ -127,26 +131,31 @@ class ShapeFunctionLinear final : public ShapeFunction {
       out.dNz = w[0] * w[1] * slope_[2];
     }
 
-    // Eight points at once, coordinate d of point k in x[d][k]; each lane's
-    // arithmetic is the single-point operator's.
-    [[gnu::always_inline]] void operator()(const Lanes8 (&x)[3], LinearStencilLanes& out) const {
-      using Int8 = std::int64_t __attribute__((vector_size(64)));
-      Int8 base{};
+    // W points at once, coordinate d of point k in x[d][k]; each lane's
+    // arithmetic is the single-point operator's. The cell goes through 32
+    // bits, the width every instruction set converts doubles to in
+    // registers (x lies in the grid, so it fits).
+    template <int W>
+    [[gnu::always_inline]] void operator()(const simd::Lanes<W> (&x)[3],
+                                           LinearStencilLanes<W>& out) const {
+      using Real = simd::Lanes<W>;
+      using Cell = simd::Int32Lanes<W>;
+      simd::IndexLanes<W> base{};
       const std::int64_t stride[3] = {1, stride_y_, stride_z_};
       for (int d = 0; d < 3; ++d) {
-        const Lanes8 scaled = (x[d] - origin4_[d]) * inv_h4_[d];
-        Int8 cell = __builtin_convertvector(scaled, Int8);  // truncation, as static_cast
-        cell = cell < 0 ? Int8{} : cell;
-        const std::int64_t last = last_cell_[static_cast<std::size_t>(d)];
-        cell = cell > last ? Int8{} + last : cell;
-        Lanes8 xi = scaled - __builtin_convertvector(cell, Lanes8);
-        xi = xi < 0.0 ? Lanes8{} : xi;
-        xi = xi > 1.0 ? Lanes8{} + 1.0 : xi;
+        const Real scaled = (x[d] - origin4_[d]) * inv_h4_[d];
+        Cell cell = __builtin_convertvector(scaled, Cell);  // truncation, as static_cast
+        cell = cell < 0 ? Cell{} : cell;
+        const std::int32_t last = last_cell_[static_cast<std::size_t>(d)];
+        cell = cell > last ? Cell{} + last : cell;
+        Real xi = scaled - __builtin_convertvector(cell, Real);
+        xi = xi < 0.0 ? Real{} : xi;
+        xi = xi > 1.0 ? Real{} + 1.0 : xi;
         out.w[d][0] = 1.0 - xi;
         out.w[d][1] = xi;
         out.slope[d][0] = -inv_h4_[d];
         out.slope[d][1] = inv_h4_[d];
-        base += cell * stride[d];
+        base += __builtin_convertvector(cell, simd::IndexLanes<W>) * stride[d];
       }
       __builtin_memcpy(out.base.data(), &base, sizeof base);
       out.stride_y = stride_y_;
