@@ -34,6 +34,10 @@ void table(std::string& out, const std::vector<const config::Param*>& fields) {
     if (p->max) doc += fmt::format(" Must be {} {}.", p->max_exclusive ? "<" : "≤", *p->max);
     if (p->allow_reference) doc += " May be `{from: <stage>.<output>}`.";
     if (p->names_material) doc += " Names an entry of `materials`.";
+    if (!p->entry_lists.empty()) {
+      doc += fmt::format(" Names an entry of this stage's {}.", fmt::join(p->entry_lists, " or "));
+    }
+    if (p->declares_names) doc += " Entry names are this stage's, shared by bodies and groups.";
     if (!p->stage_kinds.empty()) {
       doc += fmt::format(" Names an earlier stage of kind {}.", fmt::join(p->stage_kinds, " or "));
     }

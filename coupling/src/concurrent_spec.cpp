@@ -81,8 +81,12 @@ Param wave() {
       "speed",
       {Param::identifier("name", "Summary key suffix: wave_speed_<name>, front_speed_<name>")
            .require(),
-       Param::identifier("near_slab", "Group nearer the impact face").require(),
-       Param::identifier("far_slab", "Group farther away, in the same solver's part").require()},
+       Param::identifier("near_slab", "Group nearer the impact face")
+           .require()
+           .names_entry_of({"bodies", "groups"}),
+       Param::identifier("far_slab", "Group farther away, in the same solver's part")
+           .require()
+           .names_entry_of({"bodies", "groups"})},
       "A wave speed between two slabs of one solver's particles");
   return Param::map(
       "wave",
@@ -101,13 +105,15 @@ Param wave() {
            .def(0.1)
            .above(0),
        Param::list_of("speeds", speed, "Slab pairs").def(std::vector<std::string>{}),
-       Param::map(
-           "opening",
-           {Param::identifier("dpd_plane", "The DPD lattice plane next to the interface").require(),
-            Param::identifier("mpm_plane", "The MPM lattice plane next to the interface")
-                .require()},
-           "The interface opening: how far the two planes have moved apart along the axis "
-           "since the start, each plane's particles counted whichever solver holds them")},
+       Param::map("opening",
+                  {Param::identifier("dpd_plane", "The DPD lattice plane next to the interface")
+                       .require()
+                       .names_entry_of({"bodies", "groups"}),
+                   Param::identifier("mpm_plane", "The MPM lattice plane next to the interface")
+                       .require()
+                       .names_entry_of({"bodies", "groups"})},
+                  "The interface opening: how far the two planes have moved apart along the axis "
+                  "since the start, each plane's particles counted whichever solver holds them")},
       "Wave speeds in each part and the interface opening");
 }
 
@@ -137,8 +143,12 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
   s.params.push_back(wave());
   s.params.push_back(Param::map(
       "tension",
-      {Param::identifier("left_grip", "The rigid group pulled towards -axis").require(),
-       Param::identifier("right_grip", "The rigid group pulled towards +axis").require(),
+      {Param::identifier("left_grip", "The rigid group pulled towards -axis")
+           .require()
+           .names_entry_of({"bodies", "groups"}),
+       Param::identifier("right_grip", "The rigid group pulled towards +axis")
+           .require()
+           .names_entry_of({"bodies", "groups"}),
        Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
        Param::real("fit_strain", Dimension::kNone, "Upper end of the linear fit for E")
            .def(0.05)

@@ -45,8 +45,12 @@ config::StageKindSpec DpdRunStage::spec() {
           .def(std::string("free")));
   s.params.push_back(Param::map(
       "impact",
-      {Param::identifier("near_slab", "Group nearer the impact face").require(),
-       Param::identifier("far_slab", "Group farther from the impact face").require(),
+      {Param::identifier("near_slab", "Group nearer the impact face")
+           .require()
+           .names_entry_of({"bodies", "groups"}),
+       Param::identifier("far_slab", "Group farther from the impact face")
+           .require()
+           .names_entry_of({"bodies", "groups"}),
        Param::choice("axis", {"x", "y", "z"}, "Direction of the wave").def(std::string("x")),
        Param::real("threshold", Dimension::kLength,
                    "A slab has moved when its centre of mass has moved this far along the axis")
@@ -68,13 +72,19 @@ config::StageKindSpec DpdRunStage::spec() {
            .above(0)},
       "mode: impact"));
   std::vector<Param> tension = {
-      Param::identifier("specimen", "The rod: a body or group, grips included").require(),
+      Param::identifier("specimen", "The rod: a body or group, grips included")
+          .require()
+          .names_entry_of({"bodies", "groups"}),
       Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
       Param::real("area", Dimension::kNone, "Cross-section, Å^2 (default: from the extents)")
           .above(0),
       Param::map("grips",
-                 {Param::identifier("left", "The grip group at the low end").require(),
-                  Param::identifier("right", "The grip group at the high end").require()},
+                 {Param::identifier("left", "The grip group at the low end")
+                      .require()
+                      .names_entry_of({"bodies", "groups"}),
+                  Param::identifier("right", "The grip group at the high end")
+                      .require()
+                      .names_entry_of({"bodies", "groups"})},
                  "The grip groups, whose pull over the initial cross-section gives "
                  "grip_youngs_modulus")};
   for (auto& q : analysis::TensionTest::params()) tension.push_back(std::move(q));

@@ -18,7 +18,8 @@ std::vector<Param> dpd_stage_params() {
                                  "Periodic axes; on the others particles are free (surfaces)")
                       .def(std::vector<std::string>{})
                       .length(0, 3)},
-                 "The simulation box: periodic cell, and the span the ranks split");
+                 "The simulation box: periodic cell, and the span the ranks split")
+          .bounds("lo", "hi");
   const Param body = Param::map(
       "body",
       {Param::identifier("name", "Body name; also a group of its particles").require(),
@@ -44,7 +45,7 @@ std::vector<Param> dpd_stage_params() {
       "A named set of particles");
   Param motion = Param::map(
       "motion",
-      {Param::identifier("group", "Group or body").require(),
+      {Param::identifier("group", "Group or body").require().names_entry_of({"bodies", "groups"}),
        Param::choice("kind", {"rigid", "rigid_body", "frozen", "velocity"}, "What is prescribed")
            .require()},
       "A group behaviour");
@@ -88,20 +89,26 @@ std::vector<Param> dpd_stage_params() {
                "trace")
       .variant("energy", {}, "Kinetic, potential, internal (DPDE) and total energy")
       .variant("momentum", {}, "Total momentum")
-      .variant("slab_displacement", {Param::identifier("group", "Group").require()},
+      .variant("slab_displacement",
+               {Param::identifier("group", "Group").require().names_entry_of({"bodies", "groups"})},
                "Centre-of-mass displacement of a group from the stage start")
-      .variant("group_force", {Param::identifier("group", "Group").require()},
+      .variant("group_force",
+               {Param::identifier("group", "Group").require().names_entry_of({"bodies", "groups"})},
                "Total force on a group's particles (stress = force / area)")
       .variant("group_extent",
-               {Param::identifier("group", "Group").require(),
+               {Param::identifier("group", "Group").require().names_entry_of({"bodies", "groups"}),
                 Param::choice("axis", {"x", "y", "z"}, "Axis").require()},
                "Largest minus smallest coordinate of a group (V/V0, strain)");
   return {
       Param::identifier("material", "A dpd_mesoparticle material").require().material(),
       box,
-      Param::list_of("bodies", body, "Lattice-filled bodies").def(std::vector<std::string>{}),
+      Param::list_of("bodies", body, "Lattice-filled bodies")
+          .def(std::vector<std::string>{})
+          .with_stage_names(),
       initial,
-      Param::list_of("groups", group, "Named groups").def(std::vector<std::string>{}),
+      Param::list_of("groups", group, "Named groups")
+          .def(std::vector<std::string>{})
+          .with_stage_names(),
       Param::list_of("motion", motion, "Group behaviours").def(std::vector<std::string>{}),
       Param::real("temperature", Dimension::kTemperature,
                   "Maxwell-Boltzmann velocities at this temperature for the free particles; 0 "

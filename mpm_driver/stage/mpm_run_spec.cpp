@@ -96,7 +96,9 @@ config::StageKindSpec MpmRunStage::spec() {
                     .length(3, 3)},
                "Prescribed (default zero) velocity components on grid nodes")
       .variant("group_velocity",
-               {Param::identifier("group", "Group of points").require(),
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"}),
                 axes_param("Velocity components prescribed").require(),
                 Param::real_list("velocity", Dimension::kVelocity, "Prescribed velocity")
                     .require()
@@ -111,7 +113,9 @@ config::StageKindSpec MpmRunStage::spec() {
                "gradient: ddmp with ddmp_blend: face_vanishing (docs/mpm-driver.md, Known "
                "limits)")
       .variant("group_force",
-               {Param::identifier("group", "Group of points").require(),
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"}),
                 Param::real_list("force", Dimension::kForce,
                                  "Total force, shared evenly by the group's points (a traction "
                                  "times the face area)")
@@ -131,23 +135,39 @@ config::StageKindSpec MpmRunStage::spec() {
   probe.discriminated_by("kind")
       .variant("energy", {}, "Kinetic, stored (strain or internal), dissipated and total energy")
       .variant("momentum", {}, "Total momentum")
-      .variant("mean_stress", {Param::identifier("group", "Group of points").require()},
+      .variant("mean_stress",
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"})},
                "Volume-weighted mean stress (xx yy zz yz xz xy) and pressure of a group")
-      .variant("slab_displacement", {Param::identifier("group", "Group of points").require()},
+      .variant("slab_displacement",
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"})},
                "Centre-of-mass displacement of a group from its start")
-      .variant("group_force", {Param::identifier("group", "Group of points").require()},
+      .variant("group_force",
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"})},
                "Force the group's prescribed velocity exerts on it (the grip reaction)")
       .variant("group_extent",
-               {Param::identifier("group", "Group of points").require(),
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"}),
                 Param::choice("axis", {"x", "y", "z"}, "Axis").require()},
                "Largest minus smallest coordinate of the group's points")
-      .variant("group_volume", {Param::identifier("group", "Group of points").require()},
+      .variant("group_volume",
+               {Param::identifier("group", "Group of points")
+                    .require()
+                    .names_entry_of({"bodies", "groups"})},
                "Sum of the current volumes of the group's points");
 
   const Param wave_front = Param::map(
       "wave_front",
       {
-          Param::identifier("group", "The bar: a group or body").require(),
+          Param::identifier("group", "The bar: a group or body")
+              .require()
+              .names_entry_of({"bodies", "groups"}),
           Param::real("loaded_end", Dimension::kLength, "x of the loaded end").require(),
           Param::real("fixed_end", Dimension::kLength, "x of the fixed end").require(),
           Param::real("traction", Dimension::kPressure, "Applied end stress f/A").require(),
@@ -167,7 +187,9 @@ config::StageKindSpec MpmRunStage::spec() {
       "solution with reflections");
 
   std::vector<Param> tension_keys = {
-      Param::identifier("specimen", "The rod: a group or body, grips included").require(),
+      Param::identifier("specimen", "The rod: a group or body, grips included")
+          .require()
+          .names_entry_of({"bodies", "groups"}),
       Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x"))};
   for (auto& q : analysis::TensionTest::params()) tension_keys.push_back(std::move(q));
   const Param tension = Param::map(
@@ -203,8 +225,10 @@ config::StageKindSpec MpmRunStage::spec() {
                   "Nodes lighter than this fraction of the lightest point are skipped")
           .def(1e-3)
           .at_least(0),
-      Param::list_of("bodies", body, "The bodies").require().length(1, 16),
-      Param::list_of("groups", group, "Named groups of points").def(std::vector<std::string>{}),
+      Param::list_of("bodies", body, "The bodies").require().length(1, 16).with_stage_names(),
+      Param::list_of("groups", group, "Named groups of points")
+          .def(std::vector<std::string>{})
+          .with_stage_names(),
       Param::list_of("boundary", bc, "Boundary conditions").def(std::vector<std::string>{}),
       Param::real_list("body_acceleration", Dimension::kAcceleration, "Uniform body acceleration")
           .def(std::vector<double>{0.0, 0.0, 0.0})

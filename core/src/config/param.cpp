@@ -177,6 +177,12 @@ YAML::Node to_yaml(const Param& p) {
   if (p.names_material) n["material"] = true;
   if (p.allow_auto) n["or_auto"] = true;
   if (!p.stage_kinds.empty()) n["stage_kinds"] = p.stage_kinds;
+  if (!p.entry_lists.empty()) n["entry_of"] = p.entry_lists;
+  if (p.declares_names) n["declares_names"] = true;
+  if (!p.lower_upper.first.empty()) {
+    n["bounds"].push_back(p.lower_upper.first);
+    n["bounds"].push_back(p.lower_upper.second);
+  }
   if (p.one_key) n["one_key"] = true;
   if (!p.only_with.first.empty()) {
     n["only_with"]["key"] = p.only_with.first;
@@ -227,6 +233,9 @@ Param param_from_yaml(const YAML::Node& n) {
   p.names_material = n["material"] && n["material"].as<bool>();
   p.allow_auto = n["or_auto"] && n["or_auto"].as<bool>();
   if (n["stage_kinds"]) p.stage_kinds = n["stage_kinds"].as<std::vector<std::string>>();
+  if (n["entry_of"]) p.entry_lists = n["entry_of"].as<std::vector<std::string>>();
+  p.declares_names = n["declares_names"] && n["declares_names"].as<bool>();
+  if (n["bounds"]) p.lower_upper = {n["bounds"][0].Scalar(), n["bounds"][1].Scalar()};
   p.one_key = n["one_key"] && n["one_key"].as<bool>();
   if (n["only_with"]) {
     p.only_with = {n["only_with"]["key"].as<std::string>(),

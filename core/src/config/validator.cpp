@@ -407,7 +407,38 @@ YAML::Node Validator::check_map(const Param& p, const YAML::Node& node, const st
     }
     return check_fields(fields, node[p.discriminator].IsDefined() ? partial : node, path);
   }
-  return check_fields(fields, node, path);
+  YAML::Node out = check_fields(fields, node, path);
+  if (!p.lower_upper.first.empty() && out.IsMap()) check_bounds(p, node, out, path);
+  return out;
+}
+
+// Param::bounds: each lower entry below its upper one, reported at the
+// upper key with the axis that is empty.
+void Validator::check_bounds(const Param& p, const YAML::Node& node, const YAML::Node& out,
+                             const std::string& path) {
+  const auto& [lo_key, hi_key] = p.lower_upper;
+  const YAML::Node lo = out[lo_key], hi = out[hi_key];
+  if (!lo.IsDefined() || !hi.IsDefined() || lo.Type() != hi.Type()) return;
+  std::vector<double> l, h;
+  try {
+    if (lo.IsSequence() && lo.size() == hi.size()) {
+      l = lo.as<std::vector<double>>();
+      h = hi.as<std::vector<double>>();
+    } else if (lo.IsScalar()) {
+      l = {lo.as<double>()};
+      h = {hi.as<double>()};
+    }
+  } catch (const YAML::Exception&) {
+    return;  // not numbers: reported by the keys' own checks
+  }
+  for (size_t a = 0; a < l.size(); ++a) {
+    if (l[a] < h[a]) continue;
+    const std::string axis = l.size() == 3 ? fmt::format(" along {}", "xyz"[a]) : "";
+    error(node[hi_key], join_path(path, hi_key),
+          fmt::format("{} {:g} is not above {} {:g}{}: the {} holds nothing", hi_key, h[a], lo_key,
+                      l[a], axis, p.name));
+    return;
+  }
 }
 
 YAML::Node Validator::check_map_of(const Param& p, const YAML::Node& node,
@@ -451,31 +482,42 @@ YAML::Node Validator::check_list(const Param& p, const YAML::Node& node, const s
   }
   YAML::Node out(YAML::NodeType::Sequence);
   for (size_t i = 0; i < node.size(); ++i) {
-    out.push_back(check(element, node[i], fmt::format("{}[{}]", path, i)));
+    const std::string element_path = fmt::format("{}[{}]", path, i);
+    out.push_back(check(element, node[i], element_path));
+    if (p.declares_names) declare_name(p.name, node[i], element_path);
   }
   return out;
 }
 
+void Validator::declare_name(const std::string& list, const YAML::Node& entry,
+                             const std::string& path) {
+  const YAML::Node name = entry.IsMap() ? entry["name"] : YAML::Node();
+  if (!name.IsDefined() || !name.IsScalar()) return;
+  references_.push_back(
+      reference(Reference::Target::kStageName, name, join_path(path, "name"), {list}));
+}
+
+Reference Validator::reference(Reference::Target type, const YAML::Node& node,
+                               const std::string& path, std::vector<std::string> kinds) {
+  Reference r;
+  r.type = type;
+  r.key_path = path;
+  r.target = node.Scalar();
+  r.kinds = std::move(kinds);
+  r.line = node.Mark().line + 1;
+  r.column = node.Mark().column + 1;
+  return r;
+}
+
 YAML::Node Validator::check_leaf(const Param& p, const YAML::Node& node, const std::string& path) {
   YAML::Node out = check_scalar(p, node, path);
-  if (p.names_material && out.IsDefined() && !out.IsNull()) {
-    Reference r;
-    r.type = Reference::Target::kMaterial;
-    r.key_path = path;
-    r.target = node.Scalar();
-    r.line = node.Mark().line + 1;
-    r.column = node.Mark().column + 1;
-    references_.push_back(r);
+  if (!out.IsDefined() || out.IsNull()) return out;
+  if (p.names_material) references_.push_back(reference(Reference::Target::kMaterial, node, path));
+  if (!p.stage_kinds.empty()) {
+    references_.push_back(reference(Reference::Target::kStage, node, path, p.stage_kinds));
   }
-  if (!p.stage_kinds.empty() && out.IsDefined() && !out.IsNull()) {
-    Reference r;
-    r.type = Reference::Target::kStage;
-    r.key_path = path;
-    r.target = node.Scalar();
-    r.kinds = p.stage_kinds;
-    r.line = node.Mark().line + 1;
-    r.column = node.Mark().column + 1;
-    references_.push_back(r);
+  if (!p.entry_lists.empty()) {
+    references_.push_back(reference(Reference::Target::kStageEntry, node, path, p.entry_lists));
   }
   return out;
 }

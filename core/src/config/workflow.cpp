@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "pbms/config/stage_names.hpp"
 #include "pbms/config/validator.hpp"
 #include "pbms/config/yaml_source.hpp"
 
@@ -256,10 +257,11 @@ class WorkflowLoader {
         check_material_reference(r, m, idx);
       } else if (r.type == Reference::Target::kStage) {
         check_stage_reference(r, m, idx);
-      } else {
+      } else if (r.type == Reference::Target::kStageOutput) {
         check_output_reference(r, m, idx);
       }
     }
+    check_stage_names(v_.references(), v_);
   }
 
   void check_material_reference(const Reference& r, const YAML::Mark& m, int idx) {

@@ -27,6 +27,7 @@ config::Param region_param(const std::string& name, const std::string& doc) {
       Param::real("hi", Dimension::kLength, "Upper end along the axis").require()};
   Param primitive = Param::map(
       name, {Param::choice("style", {"block", "sphere", "cylinder"}, "Shape").require()}, doc);
+  primitive.bounds("lo", "hi");
   primitive.discriminated_by("style")
       .variant("block", block, "Axis-aligned box")
       .variant("sphere", sphere, "Ball")
@@ -37,6 +38,7 @@ config::Param region_param(const std::string& name, const std::string& doc) {
            "style", {"block", "sphere", "cylinder", "union", "intersection", "difference"}, "Shape")
            .require()},
       doc);
+  r.bounds("lo", "hi");
   const std::vector<Param> composite = {
       Param::list_of("of", primitive, "The regions combined (difference: first minus the others)")
           .require()

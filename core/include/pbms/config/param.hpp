@@ -50,6 +50,17 @@ struct Param {
   bool allow_auto = false;       // kReal may also be the word `auto`
   // kName: the value names an earlier stage of one of these kinds.
   std::vector<std::string> stage_kinds;
+  // kName: the value names an entry (its `name`) of one of these lists of
+  // the same stage, e.g. a motion's group: {"bodies", "groups"}.
+  std::vector<std::string> entry_lists;
+  // kListOf of maps: each entry's `name` is a name of the stage's one
+  // namespace, shared by every list that declares names (bodies and
+  // groups): a name given twice is an error.
+  bool declares_names = false;
+  // kMap: the keys of a lower and an upper bound (numbers or equal-length
+  // lists), each entry of the first below the second's: a box or block
+  // with lo >= hi holds nothing.
+  std::pair<std::string, std::string> lower_upper;
   bool one_key = false;  // kMap: exactly one of its keys is given
   // kFile: the file holds, in the same format, the map of the sibling key
   // named here, which may be given inline instead (a material's
@@ -136,6 +147,18 @@ struct Param {
   }
   Param& earlier_stage(std::vector<std::string> kinds) {
     stage_kinds = std::move(kinds);
+    return *this;
+  }
+  Param& names_entry_of(std::vector<std::string> lists) {
+    entry_lists = std::move(lists);
+    return *this;
+  }
+  Param& bounds(std::string lower, std::string upper) {
+    lower_upper = {std::move(lower), std::move(upper)};
+    return *this;
+  }
+  Param& with_stage_names() {
+    declares_names = true;
     return *this;
   }
   Param& only_when(std::string key, std::string value) {

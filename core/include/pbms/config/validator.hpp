@@ -19,11 +19,15 @@ namespace pbms::config {
 // or of a stage; checked by the workflow, which knows the stage order and
 // what each stage kind produces.
 struct Reference {
-  enum class Target { kStageOutput, kMaterial, kStage };
+  // kStageName: a name declared by an entry of a stage's list (a body or
+  // group); kStageEntry: a key that must name one.
+  enum class Target { kStageOutput, kMaterial, kStage, kStageName, kStageEntry };
   Target type = Target::kStageOutput;
   std::string key_path;
-  std::string target;              // "stage.output", or a material or stage name
-  std::vector<std::string> kinds;  // kStage: the stage kinds the key takes
+  std::string target;  // "stage.output", or a material, stage, body or group name
+  // kStage: the stage kinds the key takes; kStageName: the declaring list;
+  // kStageEntry: the lists whose names it takes.
+  std::vector<std::string> kinds;
   // What the key takes: a number, a table (kTable keys) or a map.
   OutputSpec::Shape wants = OutputSpec::Shape::kScalar;
   int line = 0, column = 0;
@@ -55,6 +59,12 @@ class Validator {
   YAML::Node check_list(const Param& p, const YAML::Node& node, const std::string& path);
   // A scalar, and the material or stage it names, if its key names one.
   YAML::Node check_leaf(const Param& p, const YAML::Node& node, const std::string& path);
+  void check_bounds(const Param& p, const YAML::Node& node, const YAML::Node& out,
+                    const std::string& path);
+  // Records the name an entry of a declaring list gives (Param::declares_names).
+  void declare_name(const std::string& list, const YAML::Node& entry, const std::string& path);
+  static Reference reference(Reference::Target type, const YAML::Node& node,
+                             const std::string& path, std::vector<std::string> kinds = {});
   YAML::Node check_scalar(const Param& p, const YAML::Node& node, const std::string& path);
   YAML::Node check_integer(const Param& p, const YAML::Node& node, const std::string& path);
   YAML::Node check_real(const Param& p, const YAML::Node& node, const std::string& path);
