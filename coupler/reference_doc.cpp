@@ -42,6 +42,7 @@ void table(std::string& out, const std::vector<const config::Param*>& fields) {
       doc += fmt::format(" Names an earlier stage of kind {}.", fmt::join(p->stage_kinds, " or "));
     }
     if (p->one_key) doc += " Takes exactly one of its keys.";
+    if (!p->excludes.empty()) doc += fmt::format(" Not given together with `{}`.", p->excludes);
     if (p->kind == config::ParamKind::kReal || p->kind == config::ParamKind::kRealList) {
       if (p->dimension != units::Dimension::kNone) {
         doc += fmt::format(" Accepts units: {}.", units::accepted_symbols(p->dimension));

@@ -131,7 +131,7 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
   for (auto& p : body_params) {
     if (p.name != "grid") s.params.push_back(std::move(p));
   }
-  s.params.push_back(shared_grid());
+  s.params.push_back(shared_grid().require());
   s.params.push_back(Param::list_of("regions", region_entry(), "The body's parts").require());
   s.params.push_back(
       Param::choice("interface", {"none", "seed", "momentum_conserving"},
@@ -139,7 +139,7 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
                     "from MPM points within the cutoff (s-15 to s-18); momentum_conserving: "
                     "and each acts back on its MPM point")
           .def(std::string("seed")));
-  s.params.push_back(continuum());
+  s.params.push_back(continuum().require());
   s.params.push_back(wave());
   s.params.push_back(Param::map(
       "tension",

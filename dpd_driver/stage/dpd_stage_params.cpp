@@ -37,7 +37,8 @@ std::vector<Param> dpd_stage_params() {
                   Param::file("h5md", "The last frame of an H5MD file"),
                   Param::file("lammps_data", "A LAMMPS data file (atom_style atomic)")},
                  "Start from an existing state instead of `bodies`")
-          .exactly_one_key();
+          .exactly_one_key()
+          .not_with("bodies");
   const Param group = Param::map(
       "group",
       {Param::identifier("name", "Group name").require(),

@@ -183,6 +183,7 @@ YAML::Node to_yaml(const Param& p) {
     n["bounds"].push_back(p.lower_upper.first);
     n["bounds"].push_back(p.lower_upper.second);
   }
+  if (!p.excludes.empty()) n["not_with"] = p.excludes;
   if (p.one_key) n["one_key"] = true;
   if (!p.only_with.first.empty()) {
     n["only_with"]["key"] = p.only_with.first;
@@ -236,6 +237,7 @@ Param param_from_yaml(const YAML::Node& n) {
   if (n["entry_of"]) p.entry_lists = n["entry_of"].as<std::vector<std::string>>();
   p.declares_names = n["declares_names"] && n["declares_names"].as<bool>();
   if (n["bounds"]) p.lower_upper = {n["bounds"][0].Scalar(), n["bounds"][1].Scalar()};
+  if (n["not_with"]) p.excludes = n["not_with"].as<std::string>();
   p.one_key = n["one_key"] && n["one_key"].as<bool>();
   if (n["only_with"]) {
     p.only_with = {n["only_with"]["key"].as<std::string>(),

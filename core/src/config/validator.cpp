@@ -327,7 +327,22 @@ YAML::Node Validator::check_fields(const std::vector<const Param*>& fields, cons
     if (resolved.IsDefined() && !resolved.IsNull()) out[f->name] = resolved;
   }
   check_only_with(fields, node, out, path);
+  check_exclusions(fields, node, path);
   return out;
+}
+
+void Validator::check_exclusions(const std::vector<const Param*>& fields, const YAML::Node& node,
+                                 const std::string& path) {
+  const auto given = [&node](const std::string& key) {
+    const YAML::Node n = node[key];
+    return n.IsDefined() && !n.IsNull() && !(n.IsSequence() && n.size() == 0);
+  };
+  for (const auto* f : fields) {
+    if (f->excludes.empty() || !given(f->name) || !given(f->excludes)) continue;
+    error(node[f->name], join_path(path, f->name),
+          fmt::format("'{}' and '{}' are given together; a stage takes one or the other", f->name,
+                      f->excludes));
+  }
 }
 
 void Validator::check_only_with(const std::vector<const Param*>& fields, const YAML::Node& node,

@@ -71,6 +71,10 @@ struct Param {
   // lateral: periodic. Travels in --describe, so the coupler refuses it
   // before any rank starts.
   std::pair<std::string, std::string> only_with;
+  // Not given together with the sibling key named here (an empty list
+  // counts as not given): `initial` and `bodies` both say where a stage's
+  // particles come from.
+  std::string excludes;
   std::vector<Param> fields;
   // kMap with variants: `discriminator` names the key whose value picks the
   // extra fields in `variants` (stage "kind", material "kind").
@@ -159,6 +163,10 @@ struct Param {
   }
   Param& with_stage_names() {
     declares_names = true;
+    return *this;
+  }
+  Param& not_with(std::string sibling) {
+    excludes = std::move(sibling);
     return *this;
   }
   Param& only_when(std::string key, std::string value) {

@@ -59,6 +59,8 @@ class Validator {
   YAML::Node check_list(const Param& p, const YAML::Node& node, const std::string& path);
   // A scalar, and the material or stage it names, if its key names one.
   YAML::Node check_leaf(const Param& p, const YAML::Node& node, const std::string& path);
+  void check_exclusions(const std::vector<const Param*>& fields, const YAML::Node& node,
+                        const std::string& path);
   void check_bounds(const Param& p, const YAML::Node& node, const YAML::Node& out,
                     const std::string& path);
   // Records the name an entry of a declaring list gives (Param::declares_names).
