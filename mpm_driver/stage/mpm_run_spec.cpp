@@ -65,6 +65,7 @@ config::StageKindSpec MpmRunStage::spec() {
                           "Material points per cell and axis: one number or x, y, z")
               .def(std::vector<int>{2})
               .length(1, 3)
+              .length_one_of({1, 3})
               .at_least(1),
           Param::real_list("velocity", Dimension::kVelocity, "Initial velocity")
               .def(std::vector<double>{0.0, 0.0, 0.0})

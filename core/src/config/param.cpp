@@ -172,6 +172,7 @@ YAML::Node to_yaml(const Param& p) {
   if (!p.holds.empty()) n["holds"] = p.holds;
   if (p.min_length) n["min_length"] = *p.min_length;
   if (p.max_length) n["max_length"] = *p.max_length;
+  if (!p.lengths.empty()) n["lengths"] = p.lengths;
   if (!p.choices.empty()) n["choices"] = p.choices;
   if (p.allow_reference) n["referable"] = true;
   if (p.names_material) n["material"] = true;
@@ -229,6 +230,7 @@ Param param_from_yaml(const YAML::Node& n) {
   if (n["holds"]) p.holds = n["holds"].as<std::string>();
   if (n["min_length"]) p.min_length = n["min_length"].as<size_t>();
   if (n["max_length"]) p.max_length = n["max_length"].as<size_t>();
+  if (n["lengths"]) p.lengths = n["lengths"].as<std::vector<size_t>>();
   if (n["choices"]) p.choices = n["choices"].as<std::vector<std::string>>();
   p.allow_reference = n["referable"] && n["referable"].as<bool>();
   p.names_material = n["material"] && n["material"].as<bool>();

@@ -488,6 +488,11 @@ YAML::Node Validator::check_list(const Param& p, const YAML::Node& node, const s
   if (p.max_length && node.size() > *p.max_length) {
     error(node, path, fmt::format("takes at most {} entries, has {}", *p.max_length, node.size()));
   }
+  if (!p.lengths.empty() &&
+      std::find(p.lengths.begin(), p.lengths.end(), node.size()) == p.lengths.end()) {
+    error(node, path,
+          fmt::format("takes {} entries, has {}", fmt::join(p.lengths, " or "), node.size()));
+  }
   Param element;
   if (p.kind == ParamKind::kListOf) {
     element = p.fields[0];

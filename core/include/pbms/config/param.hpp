@@ -44,6 +44,9 @@ struct Param {
   std::optional<double> min, max;
   bool min_exclusive = false, max_exclusive = false;
   std::optional<size_t> min_length, max_length;
+  // Lists: the only lengths allowed, when not every length in between is
+  // (one number for all axes, or one per axis: {1, 3}).
+  std::vector<size_t> lengths;
   std::vector<std::string> choices;
   bool allow_reference = false;  // may be {from: <stage>.<output>}
   bool names_material = false;   // value must name an entry of `materials`
@@ -130,6 +133,10 @@ struct Param {
   }
   Param& holding(std::string sibling) {
     holds = std::move(sibling);
+    return *this;
+  }
+  Param& length_one_of(std::vector<size_t> allowed) {
+    lengths = std::move(allowed);
     return *this;
   }
   Param& length(size_t lo, size_t hi) {
