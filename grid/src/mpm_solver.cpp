@@ -14,7 +14,7 @@
 namespace pbms::grid {
 namespace {
 
-using Lanes4 = double __attribute__((vector_size(32), may_alias));
+using Lanes4 = simd::Lanes<4>;  // half a node record: mass and momentum
 [[gnu::always_inline]] inline Lanes4 low_half(const Lanes8& l) {
   return __builtin_shufflevector(l, l, 0, 1, 2, 3);
 }
