@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # md_driver against plain lmp on the same LAMMPS inputs, side by side, one
-# rank each: the quickstart isotherm (5 pressures, 2,048 atoms, 37,500 steps).
+# rank each: the MD isotherm of configs/md_isotherm.yaml (5 pressures, 2,048 atoms, 37,500 steps).
 # Prints BENCH md_driver_overhead <ratio> x (target <= 1.03) and the ratio
 # for the whole `pbms run` job (mpirun, coupler, handshake included).
 set -euo pipefail
@@ -12,9 +12,9 @@ cd "$work"
 now() { date +%s.%N; }
 
 t0=$(now)
-"$ROOT/pbms" run "$ROOT/configs/quickstart.yaml" --ranks md=1 >run.txt 2>&1 || { cat run.txt; exit 1; }
+"$ROOT/pbms" run "$ROOT/configs/md_isotherm.yaml" --ranks md=1 >run.txt 2>&1 || { cat run.txt; exit 1; }
 t1=$(now)
-run=runs/quickstart
+run=runs/md_isotherm
 stage_s=$(/usr/bin/python3 -c "import yaml; print(yaml.safe_load(open('$run/summary.yaml'))['stages']['isotherm']['wall_s'])")
 
 # The same inputs through plain lmp, one process each, as a user would.

@@ -80,14 +80,6 @@ void check_interface(const config::StageCheck& c) {
                       "a concurrent stage moves DPD particles through the grid: scheme "
                       "velocity_verlet or nve");
   }
-  const YAML::Node material = c.materials[c.resolved["material"].Scalar()];
-  const std::string style = material["potential"]["style"].as<std::string>("");
-  if (c.resolved["interface"].Scalar() != "none" && style == "sutton_chen") {
-    c.validator.error(c.raw["interface"] ? c.raw["interface"] : c.raw, c.path + ".interface",
-                      "the interface treatments are pairwise and sutton_chen is many-body (its "
-                      "densities would need MPM ghosts two cutoffs deep): use interface: none or "
-                      "a pair style");
-  }
 }
 
 }  // namespace

@@ -91,11 +91,6 @@ void DpdEngine::set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>
   if (is_shardlow(settings_.scheme)) {
     throw Error("DPD engine: partner particles need the velocity_verlet or nve scheme");
   }
-  if (pair_->name() == "sutton_chen") {
-    throw Error(
-        fmt::format("DPD engine: partner particles need a pair style without densities (got {})",
-                    pair_->name()));
-  }
   partners_.truncate(0);
   for (std::size_t k = 0; k < x.size(); ++k) partners_.add(id[k], type, x[k], v[k]);
   with_partners_ = true;

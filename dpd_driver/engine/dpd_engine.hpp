@@ -78,9 +78,9 @@ class DpdEngine {
   // never integrated. While a set is given the list is rebuilt at every
   // update_neighbours, because the set changes from step to step. In a
   // decomposed run each rank passes the partners within reach of its own
-  // sub-box, imaged along the axes the ranks split. Throws pbms::Error for
-  // a Shardlow scheme or a many-body pair style (its densities would need
-  // the partners' own neighbours).
+  // sub-box, imaged along the axes the ranks split. A many-body style gives
+  // each the mean density of the particles it pairs with. Throws
+  // pbms::Error for a Shardlow scheme.
   void set_partners(const std::vector<Vec3>& x, const std::vector<Vec3>& v,
                     const std::vector<std::int64_t>& id, int type);
   // The same partners as the last set_partners, in the same order, moved:

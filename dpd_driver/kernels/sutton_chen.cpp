@@ -36,6 +36,33 @@ SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, d
   }
 }
 
+// Partners' neighbours are not listed, so their own sums are partial. Each
+// takes the mean g of the particles it pairs with: those sit in the same
+// crystal, and their densities are complete (partners included).
+void SuttonChen::give_partners_neighbours_density(const HalfNeighbourList& list,
+                                                   const DpdParticles& particles) {
+  const std::size_t from = list.partners_from();
+  const std::size_t size = half_inverse_sqrt_density_.size();
+  if (from >= size) return;
+  std::vector<double> sum(size - from, 0.0);
+  std::vector<int> count(size - from, 0);
+  const HalfNeighbourList::Entry* entries = list.entries();
+  for (std::size_t i = 0; i < list.particle_count(); ++i) {
+    for (std::size_t k = list.first(i); k < list.first(i + 1); ++k) {
+      const std::size_t j = HalfNeighbourList::neighbour(entries[k]);
+      if (j < from) continue;
+      const Vec3 d = list.separation(particles.x.data(), i, entries[k]);
+      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= kernel_.cutoff_squared) continue;
+      sum[j - from] += half_inverse_sqrt_density_[i];
+      ++count[j - from];
+    }
+  }
+  for (std::size_t j = from; j < size; ++j) {
+    const int c = count[j - from];
+    half_inverse_sqrt_density_[j] = c > 0 ? sum[j - from] / c : 0.0;
+  }
+}
+
 PairResult SuttonChen::compute_forces(DpdParticles& particles, const HalfNeighbourList& list,
                                       Tally tally, const PairFrictionTerm* friction) {
   // Rows of the list are the owned particles; ghosts follow them.
@@ -69,6 +96,7 @@ PairResult SuttonChen::compute_forces(DpdParticles& particles, const HalfNeighbo
     half_inverse_sqrt_density_[i] = root > 0.0 ? 0.5 / root : 0.0;
   }
   if (ghost_forward_) ghost_forward_(half_inverse_sqrt_density_);
+  give_partners_neighbours_density(list, particles);
   kernel_.half_inverse_sqrt_density = half_inverse_sqrt_density_.data();
 
   PairResult result = pair_force_loop(kernel_, particles, list, tally, friction);

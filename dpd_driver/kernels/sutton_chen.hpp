@@ -6,6 +6,9 @@
 // Forces are pairwise central, so the pair loop and its virial apply:
 //   −(dE/dr_ij)/r_ij = ε [n (a/r)^n − c m (a/r)^m (g_i + g_j)] / r²,
 // with g_i = 1 / (2 √ρ_i), after a first pass over the list has summed ρ.
+// Another program's points paired with the particles (a concurrent run's
+// partners) are no list rows, so their sums would be partial: each takes the
+// mean g of the particles it pairs with, which share its crystal.
 #pragma once
 
 #include <cmath>
@@ -65,6 +68,9 @@ class SuttonChen final : public PairStyle {
                             const PairFrictionTerm* friction) override;
 
  private:
+  void give_partners_neighbours_density(const HalfNeighbourList& list,
+                                        const DpdParticles& particles);
+
   Kernel kernel_;
   double cutoff_;
   std::vector<double> density_;

@@ -2,7 +2,7 @@
 
 Agreement with the program's own numbers proves nothing, so this script
 holds none. The run is compared with
-  - plain `lmp` on the same inputs: quickstart_vs_lmp.sh (to 1e-9);
+  - plain `lmp` on the same inputs: md_isotherm_vs_lmp.sh (to 1e-9);
   - physical references, here, each with the tolerance it can support:
     the Mishin (2001) potential's own 0 K lattice parameter and bulk
     modulus, and experiment on copper at room temperature.

@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "kernels/fcc_crystal.hpp"
 #include "kernels/half_neighbour_list.hpp"
 #include "kernels/lj_nm.hpp"
 #include "kernels/morse.hpp"
@@ -296,6 +297,42 @@ TEST(DpdPairStyles, SuttonChenDimerEnergy) {
   const double rho = std::pow(3.61 / r, 6.0);
   EXPECT_NEAR(dimer(sc, r).first, 0.0124 * (std::pow(3.61 / r, 9.0) - 39.4 * 2.0 * std::sqrt(rho)),
               1e-13);
+}
+
+// A concurrent run's MPM points pair with the DPD particles but are no list
+// rows, so a many-body style gives each the mean density of the particles
+// it pairs with. Half of a perfect periodic crystal owned and the other half
+// partners is then the whole crystal: every owned particle has the
+// crystal's density (the lattice sum, recomputed here) and, by the
+// lattice's symmetry, no net force, the planes at the interface included.
+TEST(DpdPairStyles, SuttonChenPartnersStandForCrystalSites) {
+  const double a = 7.23, n = 9.0, m = 6.0, cutoff = 11.8;
+  SuttonChen sc(0.099056, a, n, m, 39.432, cutoff);
+  FccCrystal crystal = fcc_crystal(4, 4, 4, a, 508.37);
+  DpdParticles p;
+  p.mass_per_type = {508.37, 508.37};
+  const double half = 0.5 * crystal.box.length(0) - 0.1;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t i = 0; i < crystal.particles.size(); ++i) {
+      const Vec3& x = crystal.particles.x[i];
+      if ((x[0] < half) == (pass == 0)) p.add(crystal.particles.id[i], pass, x);
+    }
+  }
+  const std::size_t owned = crystal.particles.size() / 2;
+  HalfNeighbourList list(cutoff, kSkin);
+  list.build(p, crystal.box, owned, owned);
+  energy_forces(sc, p, list);
+
+  double rho0 = 0.0;  // the 12, 6, 24, 12 and 24 sites of the first five shells
+  const double shells[5][2] = {{12, 0.5}, {6, 1.0}, {24, 1.5}, {12, 2.0}, {24, 2.5}};
+  for (const auto& [count, r2_over_a2] : shells) {
+    if (r2_over_a2 * a * a < cutoff * cutoff) rho0 += count * std::pow(r2_over_a2, -0.5 * m);
+  }
+  const double scale = 0.099056 * n / a;  // a pair force at r = a, eV/Å
+  for (std::size_t i = 0; i < owned; ++i) {
+    EXPECT_NEAR(sc.density()[i], rho0, 1e-12 * rho0) << "particle " << i;
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.f[i][k], 0.0, 1e-12 * scale) << "particle " << i;
+  }
 }
 
 TEST(DpdPairStyles, TableReproducesItsRowsAndInterpolatesSmoothly) {

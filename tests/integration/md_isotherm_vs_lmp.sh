@@ -1,5 +1,5 @@
 source "$(dirname "$0")/lib.sh"
-# Plain `lmp` replays the inputs md_driver wrote for the quickstart's 0 GPa
+# Plain `lmp` replays the inputs md_driver wrote for configs/md_isotherm.yaml's 0 GPa
 # and 5 GPa points (the lattice parameter and V/V0(5 GPa) are read there) on
 # as many ranks as md_driver had. The script holds md_driver's run chunks
 # as they ran (`run N start S stop E pre no`), so both follow the same
