@@ -1,15 +1,33 @@
 #include "driver_catalog.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
 #include <fmt/format.h>
 
+#include "pbms/config/body_geometry_check.hpp"
 #include "pbms/coupling/concurrent_check.hpp"
 #include "pbms/error.hpp"
 #include "stages/coupler_stage.hpp"
 
 namespace pbms::coupler {
+namespace {
+
+// Every kind that places particles in a box also gets the regions' check,
+// after its own.
+void attach_geometry_check(config::StageKindSpec& k) {
+  const bool has_box = std::any_of(k.params.begin(), k.params.end(),
+                                   [](const config::Param& p) { return p.name == "box"; });
+  if (!has_box) return;
+  auto own = std::move(k.check);
+  k.check = [own](const config::StageCheck& c) {
+    if (own) own(c);
+    config::check_body_geometry(c);
+  };
+}
+
+}  // namespace
 
 std::vector<config::DriverDescription> discover_drivers(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> programs;
@@ -42,6 +60,7 @@ std::vector<config::DriverDescription> discover_drivers(const std::filesystem::p
   for (auto& d : out) {
     for (auto& k : d.stage_kinds) {
       if (!k.partners.empty() && k.kind == "concurrent") k.check = coupling::check_concurrent_stage;
+      attach_geometry_check(k);
     }
   }
   if (out.empty()) throw Error(fmt::format("no drivers found in '{}'", dir.string()));

@@ -398,7 +398,7 @@ class WorkflowLoader {
       if (!stage_specs_[i] || !stage_specs_[i]->check) continue;
       const std::string sp = fmt::format("stages[{}]", i);
       stage_specs_[i]->check(
-          {v_, stages_[i], resolved_["stages"][i], sp, resolved_["materials"], drivers_});
+          {v_, stages_[i], resolved_["stages"][i], sp, resolved_["materials"], drivers_, resolved_});
     }
   }
 

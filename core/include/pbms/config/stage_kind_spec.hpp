@@ -36,6 +36,7 @@ struct StageCheck {
   const std::string& path;      // "stages[3]"
   const YAML::Node& materials;  // resolved `materials:`, potential files read
   const std::vector<DriverDescription>& drivers;
+  const YAML::Node& workflow;  // the whole resolved workflow (other stages, launch)
 };
 
 struct StageKindSpec {
