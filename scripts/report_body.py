@@ -90,7 +90,7 @@ def view_axes(parts, config):
     extent = np.ptp(pts, axis=0) if len(pts) else np.ones(3)
     wave = config.get("wave") if isinstance(config.get("wave"), dict) else {}
     axis = wave.get("axis")
-    h = AXES.index(axis) if axis in AXES else int(np.argmax(extent))
+    h = AXES.index(axis) if axis in ("x", "y", "z") else int(np.argmax(extent))
     rest = [a for a in range(3) if a != h]
     v = max(rest, key=lambda a: extent[a])
     d = [a for a in rest if a != v][0]
@@ -201,7 +201,9 @@ def render_body(stage_dir, out_png, title, config):
     """Writes out_png; returns None, or why there is no picture."""
     parts = load_parts(stage_dir)
     if not parts:
-        return "no particle frames (the stage wrote no dpd_/mpm_particles.h5md, or they are empty)"
+        every = config.get("particles_every")
+        hint = "; set particles_every to draw it" if not every else ""
+        return f"the stage wrote no particle frames (particles_every: {every}){hint}"
     rows = rows_of(parts)
     for p in parts:
         p.load(sorted({idx for _, _, m in rows for q, idx in m if q is p}))
