@@ -15,8 +15,9 @@ run directories this test writes itself (no build, no MPI: seconds).
   at its bound: warnings at the top, in the stage and in the last lines;
   the fit's targets against its fitted values.
 - damaged: a manifest that is not YAML, a results.h5 that is not HDF5, a
-  truncated PNG: the page is still written, names the unreadable files and
-  leaves the broken PNG out.
+  truncated PNG: the page is still written, names the unreadable files,
+  leaves the broken PNG out, and still draws the body (here of a concurrent
+  stage without wave:).
 - another job's run (--run-id that does not match): nothing written; a
   directory that is not a run: exit 1.
 
@@ -287,9 +288,15 @@ def damaged_run(base, failed):
         head = f.read(2000)
     with open(os.path.join(run, "elastic_half.png"), "wb") as f:
         f.write(head)  # a plot cut off while it was written
+    os.remove(os.path.join(run, "impact_body.png"))
+    config = dict(CONFIG, stages=[dict(s) for s in CONFIG["stages"]])
+    del config["stages"][1]["wave"]  # no wave axis: the body's long axis is across
+    write_yaml(os.path.join(run, "config.yaml"), config, "resolved")
     rc, _, err = run_report([run])
     text, page = read_page(run)
     check(rc == 0 and "Traceback" not in err, "damaged run: report.py still writes the page")
+    check(any(i.get("alt") == "impact_body.png" for i in page.imgs),
+          "damaged run: the body is drawn from the H5MD files (no wave: in the config)")
     check("manifest.yaml could not be read" in text and "results.h5 could not be read" in text,
           "damaged run: the page names the files it could not read")
     check(not any(i.get("alt") == "elastic_half.png" for i in page.imgs),
