@@ -1,6 +1,6 @@
 source "$(dirname "$0")/lib.sh"
 "$PBMS" --help | grep -q "Usage: ./pbms COMMAND" || fail "pbms --help"
-for c in run validate test plot export bench; do
+for c in run validate test plot export bench report; do
   "$PBMS" "$c" --help >/dev/null || fail "pbms $c --help exited non-zero"
 done
 if "$PBMS" frobnicate 2>/dev/null; then fail "unknown command accepted"; fi
