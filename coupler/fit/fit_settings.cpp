@@ -140,10 +140,11 @@ void check_free(const config::StageCheck& c, const YAML::Node& potential) {
       continue;
     }
     const auto bounds = c.resolved["free"][name].as<std::vector<double>>();
-    if (bounds[0] > bounds[1]) {
-      c.validator.error(
-          kv.second, path,
-          fmt::format("lower bound {} is above upper bound {}", bounds[0], bounds[1]));
+    if (bounds[0] >= bounds[1]) {
+      c.validator.error(kv.second, path,
+                        fmt::format("lower bound {} is not below upper bound {}: a free "
+                                    "parameter needs room (to hold it, leave it out of `free`)",
+                                    bounds[0], bounds[1]));
       continue;
     }
     const double start = potential[name].as<double>();
@@ -155,7 +156,83 @@ void check_free(const config::StageCheck& c, const YAML::Node& potential) {
   }
 }
 
+// The workflow stage of that name, or a null node.
+YAML::Node stage_named(const config::StageCheck& c, const std::string& name) {
+  for (const auto& s : c.workflow["stages"]) {
+    if (s["name"].Scalar() == name) return s;
+  }
+  return YAML::Node();
+}
+
+// "stage.output" of a {from: ...} node, split; empty for a literal.
+std::pair<std::string, std::string> source_of(const YAML::Node& raw) {
+  if (!raw || !raw.IsMap() || !raw["from"]) return {};
+  const std::string from = raw["from"].Scalar();
+  const auto dot = from.find('.');
+  if (dot == std::string::npos) return {};
+  return {from.substr(0, dot), from.substr(dot + 1)};
+}
+
+// A fit judged at T > 0 against MD's values at another temperature would
+// fit thermal expansion and softening that are not there: md_elastic's
+// c11 (no _at_t) is its 0 K value, an md_isotherm has its own temperature.
+void check_target_temperatures(const config::StageCheck& c) {
+  const double t = c.resolved["temperature"].as<double>();
+  if (!(t > 0.0)) return;
+  const YAML::Node elastic = c.raw["elastic"];
+  for (const char* k : {"c11", "c12", "c44"}) {
+    const auto [stage, output] = source_of(elastic ? elastic[k] : YAML::Node());
+    const YAML::Node src = stage.empty() ? YAML::Node() : stage_named(c, stage);
+    if (!src.IsMap() || src["kind"].Scalar() != "md_elastic" || output != k) continue;
+    c.validator.error(elastic[k], fmt::format("{}.elastic.{}", c.path, k),
+                      fmt::format("the fit judges at {:g} K, but {}.{} is MD's 0 K value: use "
+                                  "{}.{}_at_t",
+                                  t, stage, output, stage, output));
+  }
+  const YAML::Node iso = c.raw["isotherm"];
+  const auto [stage, output] = source_of(iso && iso.IsMap() ? iso["table"] : YAML::Node());
+  const YAML::Node src = stage.empty() ? YAML::Node() : stage_named(c, stage);
+  if (!src.IsMap() || !src["temperature"]) return;
+  const double md = src["temperature"].as<double>();
+  if (std::abs(md - t) > 1.0) {
+    c.validator.error(iso["table"], c.path + ".isotherm.table",
+                      fmt::format("the fit judges at {:g} K, but '{}' is MD's isotherm at {:g} K",
+                                  t, stage, md));
+  }
+}
+
+// Elastic targets given as numbers: a bare number is bar (metal units), so
+// 170 meant as GPa is 1e4 times too small, and a value in bar given as GPa
+// 1e4 times too large.
+void check_target_magnitudes(const config::StageCheck& c) {
+  const YAML::Node raw = c.raw["elastic"];
+  if (!raw || !raw.IsMap()) return;
+  for (const char* k : {"c11", "c12", "c44"}) {
+    if (!raw[k] || !raw[k].IsScalar()) continue;
+    const double gpa = c.resolved["elastic"][k].as<double>() / 1.0e4;
+    if (gpa >= 1.0 && gpa <= 2000.0) continue;
+    c.validator.error(raw[k], fmt::format("{}.elastic.{}", c.path, k),
+                      fmt::format("{:g} GPa is no crystal's elastic constant (1 to 2,000 GPa); a "
+                                  "bare number is bar: write the unit, e.g. `170 GPa`",
+                                  gpa));
+  }
+}
+
+void check_group_ranks(const config::StageCheck& c) {
+  const YAML::Node g = c.resolved["group_ranks"];
+  const YAML::Node dpd = c.workflow["launch"] ? c.workflow["launch"]["dpd"] : YAML::Node();
+  if (!g || !g.IsScalar() || !dpd || !dpd.IsScalar()) return;
+  if (g.as<int>() <= dpd.as<int>()) return;
+  c.validator.error(c.raw["group_ranks"] ? c.raw["group_ranks"] : c.raw, c.path + ".group_ranks",
+                    fmt::format("a judge group of {} ranks needs at least that many dpd_driver "
+                                "ranks; launch.dpd is {}",
+                                g.as<int>(), dpd.as<int>()));
+}
+
 void check_fit(const config::StageCheck& c) {
+  check_target_temperatures(c);
+  check_target_magnitudes(c);
+  check_group_ranks(c);
   const std::string material = c.resolved["material"].Scalar();
   check_free(c, c.materials[material]["potential"]);
   if (!c.raw["isotherm"] && !c.raw["elastic"]) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -82,12 +83,112 @@ void check_interface(const config::StageCheck& c) {
   }
 }
 
+// A modulus given as a number far from any solid's is a unit slip: a bare
+// number is bar (metal units), so `98` meant as GPa is 1e4 times too soft.
+void check_continuum(const config::StageCheck& c) {
+  const YAML::Node raw = c.raw["continuum"];
+  const YAML::Node cont = c.resolved["continuum"];
+  if (!raw || !raw.IsMap()) return;
+  constexpr double kBarPerGpa = 1.0e4;
+  const YAML::Node e = raw["youngs_modulus"];
+  if (e && e.IsScalar()) {
+    const double gpa = cont["youngs_modulus"].as<double>() / kBarPerGpa;
+    if (gpa < 1.0 || gpa > 2000.0) {
+      c.validator.error(e, c.path + ".continuum.youngs_modulus",
+                        fmt::format("{:g} GPa is no solid's Young's modulus (1 to 2,000 GPa); a "
+                                    "bare number is bar: write the unit, e.g. `98 GPa`",
+                                    gpa));
+    }
+  }
+  const YAML::Node a = raw["lattice_constant"];
+  const YAML::Node material = c.materials[c.resolved["material"].Scalar()];
+  if (a && a.IsScalar() && material && material["lattice_constant"]) {
+    const double given = cont["lattice_constant"].as<double>();
+    const double own = material["lattice_constant"].as<double>();
+    if (std::abs(given / own - 1.0) > 0.1) {
+      c.validator.error(a, c.path + ".continuum.lattice_constant",
+                        fmt::format("{:g} Å is {:.0f} % off the material's own {:g} Å: the MPM "
+                                    "points stand on the mesoparticle lattice (an atomic lattice "
+                                    "constant would make them {:.0f} times too light)",
+                                    given, 100.0 * (given / own - 1.0), own,
+                                    std::pow(own / given, 3.0)));
+    }
+  }
+}
+
+// The velocity of a grip along the pull, or nothing for a grip with no
+// motion; frozen is zero.
+std::optional<double> grip_speed(const config::StageCheck& c, const std::string& grip, int axis) {
+  for (const auto& m : c.resolved["motion"]) {
+    if (m["group"].Scalar() != grip) continue;
+    if (m["kind"].Scalar() == "frozen" || !m["velocity"]) return 0.0;
+    return m["velocity"][axis].as<double>();
+  }
+  return std::nullopt;
+}
+
+// Grips that do not pull apart give a tension test no strain: E is NaN.
+void check_grips(const config::StageCheck& c) {
+  const YAML::Node t = c.resolved["tension"];
+  if (!t || !t.IsMap()) return;
+  const YAML::Node raw = c.raw["tension"];
+  const std::string left = t["left_grip"].Scalar(), right = t["right_grip"].Scalar();
+  if (left == right) {
+    c.validator.error(raw["right_grip"], c.path + ".tension.right_grip",
+                      fmt::format("the right grip is the left grip ('{}'): name two groups at "
+                                  "the rod's two ends",
+                                  left));
+    return;
+  }
+  const int axis = axis_index(t["axis"].as<std::string>("x"));
+  const auto l = grip_speed(c, left, axis), r = grip_speed(c, right, axis);
+  if (l && r && !(*r - *l > 0.0)) {
+    c.validator.error(raw, c.path + ".tension",
+                      fmt::format("the grips do not pull the rod apart: '{}' moves at {:g} and "
+                                  "'{}' at {:g} Å/ps along {} (the right one must be faster)",
+                                  left, *l, right, *r, "xyz"[axis]));
+  }
+}
+
+geometry::RegionPtr group_region(const config::StageCheck& c, const std::string& name) {
+  for (const auto& g : c.resolved["groups"]) {
+    if (g["name"].Scalar() == name) return geometry::region_from_yaml(g["region"]);
+  }
+  return nullptr;
+}
+
+// A grip moves its planes rigidly: an opening measured on them is the
+// grip's, not the interface's.
+void check_opening_off_grips(const config::StageCheck& c) {
+  const YAML::Node t = c.resolved["tension"];
+  const YAML::Node w = c.resolved["wave"];
+  if (!t || !t.IsMap() || !w || !w["opening"]) return;
+  for (const char* plane : {"dpd_plane", "mpm_plane"}) {
+    const auto p = group_region(c, w["opening"][plane].Scalar());
+    for (const char* grip : {"left_grip", "right_grip"}) {
+      const auto g = group_region(c, t[grip].Scalar());
+      if (!p || !g) continue;
+      const geometry::Box a = p->bounds(), b = g->bounds();
+      bool apart = false;
+      for (std::size_t k = 0; k < 3; ++k) apart = apart || a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k];
+      if (apart) continue;
+      c.validator.error(c.raw["wave"]["opening"][plane], c.path + ".wave.opening." + plane,
+                        fmt::format("the opening plane '{}' overlaps the grip '{}': a grip "
+                                    "moves rigidly, so the opening would be the grip's",
+                                    w["opening"][plane].Scalar(), t[grip].Scalar()));
+    }
+  }
+}
+
 }  // namespace
 
 void check_concurrent_stage(const config::StageCheck& c) {
   check_regions(c);
   check_grid(c);
   check_interface(c);
+  check_continuum(c);
+  check_grips(c);
+  check_opening_off_grips(c);
 }
 
 }  // namespace pbms::coupling

@@ -275,13 +275,18 @@ void DpdEngine::berendsen(double temperature, double tau) {
 }
 
 ThermoState DpdEngine::thermo(bool with_potential) {
-  // count, K, Σu, 6 kinetic tensor, 3 momentum, U, 6 virial
-  double s[19] = {};
+  // count, K, Σu, 6 kinetic tensor, 3 momentum, U, 6 virial, free count, free K
+  double s[21] = {};
   s[0] = static_cast<double>(owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
     const double m = particles_.mass(i);
     const Vec3& v = particles_.v[i];
-    s[1] += m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double mv2 = m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    s[1] += mv2;
+    if ((particles_.group_mask[i] & prescribed_) == 0) {
+      s[19] += 1.0;
+      s[20] += mv2;
+    }
     s[2] += particles_.internal_energy[i];
     s[3] += m * v[0] * v[0];
     s[4] += m * v[1] * v[1];
@@ -299,13 +304,15 @@ ThermoState DpdEngine::thermo(bool with_potential) {
     s[12] = pr.energy;
     for (int c = 0; c < 6; ++c) s[13 + c] = pr.virial[c];
   }
-  allreduce_sum(comm(), s, 19);
+  allreduce_sum(comm(), s, 21);
   ThermoState t;
   t.particles = s[0];
   t.kinetic = 0.5 * s[1] * units::kMvv2e;
   t.internal = s[2];
-  const double dof = 3.0 * s[0] - 3.0;
-  t.temperature = dof > 0.0 ? 2.0 * t.kinetic / (dof * units::kBoltzmann) : 0.0;
+  // Frozen and rigid particles carry no thermal motion: the temperature is
+  // that of the free ones (3 N - 3 degrees of freedom, as the thermostat's).
+  const double dof = 3.0 * s[19] - 3.0;
+  t.temperature = dof > 0.0 ? s[20] * units::kMvv2e / (dof * units::kBoltzmann) : 0.0;
   t.potential = s[12];
   const double volume = domain_.box().volume();
   for (int c = 0; c < 6; ++c) {

@@ -7,14 +7,16 @@ source "$(dirname "$0")/lib.sh"
 #    MD's volume per atom at every pressure, held-out ones included;
 #  - its C11, C12, C44 at 298 K within 10 % of MD's (as hierarchy_chain);
 #  - the front crosses the interface: each slab, DPD and MPM, moves in the
-#    order of its distance from the flyer, and the MPM half has a speed.
+#    order of its distance from the flyer, and the MPM half has a speed;
+#  - the run's report.html holds a rendered picture of the impact (the
+#    browser test quickstart_report_browser opens it).
 # The speeds are printed beside the longitudinal speed sqrt(C11/rho)
 # recomputed here from the fitted model's C11 and density.
 start=$(date +%s)
 "$PBMS" run "$ROOT/configs/quickstart.yaml" > out.txt 2>&1 || { cat out.txt; fail "quickstart failed"; }
 echo "wall time of the quickstart: $(( $(date +%s) - start )) s (MD included, build excluded)"
 "$PY" - runs/quickstart <<'PYEOF'
-import math, sys
+import math, os, sys
 import h5py, yaml
 from summary_checks import Checks
 run = sys.argv[1]
@@ -45,6 +47,10 @@ cl = math.sqrt(dpd["c11"]["value"] * 1e9 / rho)
 c.check(math.isfinite(imp.get("wave_speed_far_half", math.nan)), "the MPM half has a wave speed")
 print(f"     wave speed: DPD half {imp['wave_speed_near_half']:.0f} m/s, MPM half {imp.get('wave_speed_far_half', math.nan):.0f} m/s;"
       f" sqrt(C11/rho) of the fitted model {cl:.0f} m/s")
+body = f"{run}/impact_body.png"
+c.check(os.path.getsize(body) > 10000 if os.path.exists(body) else False, f"a rendered picture of the impact: {body}")
+page = open(f"{run}/report.html").read() if os.path.exists(f"{run}/report.html") else ""
+c.check("impact" in page and page.count("data:image/png;base64,") >= 5, "report.html holds the stages and their pictures inline")
 c.exit()
 PYEOF
 echo "1 passed, 0 failed"

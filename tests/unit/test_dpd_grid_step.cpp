@@ -12,6 +12,7 @@
 #include "kernels/fcc_crystal.hpp"
 #include "kernels/maxwell_boltzmann_velocities.hpp"
 #include "pbms/error.hpp"
+#include "pbms/units.hpp"
 
 using namespace pbms;
 using namespace pbms::dpd;
@@ -262,4 +263,30 @@ TEST(DpdGridStep, APeriodicCrystalMovedByWholeCellsTakesTheSameSteps) {
   }
   EXPECT_GT(spread, 0.01);  // the velocity did spread to other layers
   EXPECT_LT(diff, 1e-12);
+}
+
+// A frozen grip has no thermal motion: counting its particles at rest would
+// report 256-263 K for a rod at 298 K. The temperature is the free
+// particles' alone, recomputed here from their velocities.
+TEST(DpdEngineThermo, TemperatureLeavesFrozenParticlesOut) {
+  FccCrystal c = fcc_crystal(4, 4, 4, kLattice, kMass);
+  assign_maxwell_boltzmann_velocities(c.particles, 298.0, 7);
+  double mv2 = 0.0, free = 0.0;
+  for (std::size_t i = 0; i < c.particles.size(); ++i) {
+    if (c.particles.x[i][0] < 0.6 * kLattice) {
+      c.particles.group_mask[i] = 1;
+      c.particles.v[i] = {0.0, 0.0, 0.0};
+      continue;
+    }
+    const auto& v = c.particles.v[i];
+    mv2 += kMass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    free += 1.0;
+  }
+  DpdEngine engine(MPI_COMM_SELF, c.box, cu_cg_morse(),
+                   thermostat(cu_cg_morse_parameters().cutoff), std::move(c.particles));
+  engine.set_prescribed_groups(1);
+  const double expected = mv2 * units::kMvv2e / ((3.0 * free - 3.0) * units::kBoltzmann);
+  EXPECT_NEAR(engine.thermo(false).temperature, expected, 1e-12 * expected);
+  EXPECT_GT(free, 0.0);
+  EXPECT_LT(free, static_cast<double>(engine.owned()));
 }

@@ -71,15 +71,20 @@ YAML::Node stage_named(const YAML::Node& workflow, const std::string& name) {
 // This stage's bodies, or those of the stage its state comes from (followed
 // back through `initial.from_stage`); none known for a file's state.
 std::vector<Placed> bodies_of(const StageCheck& c) {
-  YAML::Node stage = c.resolved;
+  // reset(), never `=`: assigning a YAML::Node overwrites the node it refers
+  // to, which here is a stage of the workflow. Read through a const view,
+  // whose operator[] adds no key.
+  YAML::Node stage;
+  stage.reset(c.resolved);
   for (int hops = 0; hops < 64 && stage; ++hops) {
-    if (stage["bodies"] && stage["bodies"].size() > 0) {
+    const YAML::Node& s = stage;
+    if (s["bodies"] && s["bodies"].size() > 0) {
       const bool own = hops == 0;
-      return placed(stage["bodies"], own ? c.raw["bodies"] : YAML::Node(), c.path + ".bodies");
+      return placed(s["bodies"], own ? c.raw["bodies"] : YAML::Node(), c.path + ".bodies");
     }
-    const YAML::Node from = stage["initial"] ? stage["initial"]["from_stage"] : YAML::Node();
+    const YAML::Node from = s["initial"] ? s["initial"]["from_stage"] : YAML::Node();
     if (!from || !from.IsScalar()) break;
-    stage = stage_named(c.workflow, from.Scalar());
+    stage.reset(stage_named(c.workflow, from.Scalar()));
   }
   return {};
 }
