@@ -195,9 +195,9 @@ void check_target_temperatures(const config::StageCheck& c) {
   if (!src.IsMap() || !src["temperature"]) return;
   const double md = src["temperature"].as<double>();
   if (std::abs(md - t) > 1.0) {
-    c.validator.error(iso["table"], c.path + ".isotherm.table",
-                      fmt::format("the fit judges at {:g} K, but '{}' is MD's isotherm at {:g} K",
-                                  t, stage, md));
+    c.validator.error(
+        iso["table"], c.path + ".isotherm.table",
+        fmt::format("the fit judges at {:g} K, but '{}' is MD's isotherm at {:g} K", t, stage, md));
   }
 }
 

@@ -106,12 +106,12 @@ void check_continuum(const config::StageCheck& c) {
     const double given = cont["lattice_constant"].as<double>();
     const double own = material["lattice_constant"].as<double>();
     if (std::abs(given / own - 1.0) > 0.1) {
-      c.validator.error(a, c.path + ".continuum.lattice_constant",
-                        fmt::format("{:g} Å is {:.0f} % off the material's own {:g} Å: the MPM "
-                                    "points stand on the mesoparticle lattice (an atomic lattice "
-                                    "constant would make them {:.0f} times too light)",
-                                    given, 100.0 * (given / own - 1.0), own,
-                                    std::pow(own / given, 3.0)));
+      c.validator.error(
+          a, c.path + ".continuum.lattice_constant",
+          fmt::format("{:g} Å is {:.0f} % off the material's own {:g} Å: the MPM "
+                      "points stand on the mesoparticle lattice (an atomic lattice "
+                      "constant would make them {:.0f} times too light)",
+                      given, 100.0 * (given / own - 1.0), own, std::pow(own / given, 3.0)));
     }
   }
 }

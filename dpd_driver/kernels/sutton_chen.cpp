@@ -40,7 +40,7 @@ SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, d
 // takes the mean g of the particles it pairs with: those sit in the same
 // crystal, and their densities are complete (partners included).
 void SuttonChen::give_partners_neighbours_density(const HalfNeighbourList& list,
-                                                   const DpdParticles& particles) {
+                                                  const DpdParticles& particles) {
   const std::size_t from = list.partners_from();
   const std::size_t size = half_inverse_sqrt_density_.size();
   if (from >= size) return;

@@ -43,34 +43,36 @@ config::StageKindSpec DpdRunStage::spec() {
                     "free: no analysis; impact: wave speed from two slabs' first motion; "
                     "tension: Young's modulus from the virial stress against the strain")
           .def(std::string("free")));
-  s.params.push_back(Param::map(
-      "impact",
-      {Param::identifier("near_slab", "Group nearer the impact face")
-           .require()
-           .names_entry_of({"bodies", "groups"}),
-       Param::identifier("far_slab", "Group farther from the impact face")
-           .require()
-           .names_entry_of({"bodies", "groups"}),
-       Param::choice("axis", {"x", "y", "z"}, "Direction of the wave").def(std::string("x")),
-       Param::real("threshold", Dimension::kLength,
-                   "A slab has moved when its centre of mass has moved this far along the axis")
-           .def(0.25)
-           .above(0),
-       Param::choice("arrival", {"first_motion", "mid_amplitude"},
-                     "What wave_speed times: first_motion, the threshold's crossing (a foot "
-                     "that fires part-way up the front); mid_amplitude, half way up the slab's "
-                     "velocity rise, the shock speed that a Rayleigh line predicts")
-           .def(std::string("first_motion")),
-       Param::real("smoothing", Dimension::kTime,
-                   "Mid-amplitude: the slab velocity is a running mean over this time")
-           .def(0.05)
-           .above(0),
-       Param::real("window", Dimension::kTime,
-                   "Mid-amplitude: the front's top is the largest smoothed velocity within "
-                   "this time of the first motion")
-           .def(0.1)
-           .above(0)},
-      "mode: impact"));
+  s.params.push_back(
+      Param::map(
+          "impact",
+          {Param::identifier("near_slab", "Group nearer the impact face")
+               .require()
+               .names_entry_of({"bodies", "groups"}),
+           Param::identifier("far_slab", "Group farther from the impact face")
+               .require()
+               .names_entry_of({"bodies", "groups"}),
+           Param::choice("axis", {"x", "y", "z"}, "Direction of the wave").def(std::string("x")),
+           Param::real("threshold", Dimension::kLength,
+                       "A slab has moved when its centre of mass has moved this far along the axis")
+               .def(0.25)
+               .above(0),
+           Param::choice("arrival", {"first_motion", "mid_amplitude"},
+                         "What wave_speed times: first_motion, the threshold's crossing (a foot "
+                         "that fires part-way up the front); mid_amplitude, half way up the slab's "
+                         "velocity rise, the shock speed that a Rayleigh line predicts")
+               .def(std::string("first_motion")),
+           Param::real("smoothing", Dimension::kTime,
+                       "Mid-amplitude: the slab velocity is a running mean over this time")
+               .def(0.05)
+               .above(0),
+           Param::real("window", Dimension::kTime,
+                       "Mid-amplitude: the front's top is the largest smoothed velocity within "
+                       "this time of the first motion")
+               .def(0.1)
+               .above(0)},
+          "mode: impact")
+          .required_when("mode", "impact"));
   std::vector<Param> tension = {
       Param::identifier("specimen", "The rod: a body or group, grips included")
           .require()
@@ -88,10 +90,11 @@ config::StageKindSpec DpdRunStage::spec() {
                  "The grip groups, whose pull over the initial cross-section gives "
                  "grip_youngs_modulus")};
   for (auto& q : analysis::TensionTest::params()) tension.push_back(std::move(q));
-  s.params.push_back(Param::map(
-      "tension", std::move(tension),
-      "mode: tension. Stress is the specimen's mean conservative virial stress, strain its "
-      "elongation over its length"));
+  s.params.push_back(
+      Param::map("tension", std::move(tension),
+                 "mode: tension. Stress is the specimen's mean conservative virial stress, strain "
+                 "its elongation over its length")
+          .required_when("mode", "tension"));
   s.outputs = common_outputs();
   s.outputs.push_back({"grip_youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
                        "Slope of the grips' stress (the rod's pull on them: the pair force on the "

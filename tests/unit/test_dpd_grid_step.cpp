@@ -282,8 +282,8 @@ TEST(DpdEngineThermo, TemperatureLeavesFrozenParticlesOut) {
     mv2 += kMass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     free += 1.0;
   }
-  DpdEngine engine(MPI_COMM_SELF, c.box, cu_cg_morse(),
-                   thermostat(cu_cg_morse_parameters().cutoff), std::move(c.particles));
+  DpdEngine engine(MPI_COMM_SELF, c.box, cu_cg_morse(), thermostat(cu_cg_morse_parameters().cutoff),
+                   std::move(c.particles));
   engine.set_prescribed_groups(1);
   const double expected = mv2 * units::kMvv2e / ((3.0 * free - 3.0) * units::kBoltzmann);
   EXPECT_NEAR(engine.thermo(false).temperature, expected, 1e-12 * expected);

@@ -234,6 +234,40 @@ TEST(Workflow, OrdinaryAnchorsAndAliasesAreAccepted) {
   EXPECT_EQ(r.workflow->stages[1].params["cells"][2].as<int>(), 3);
 }
 
+// YAML merge keys: a stage that is another with a few keys changed.
+// The merged stage resolves as if written out, its own keys win, and a
+// merge key holding anything but maps is an error at its line.
+TEST(Workflow, MergeKeysWriteOutTheMergedMaps) {
+  const auto merged = write("merge.yaml", std::string(kHeader) + R"(stages:
+  - &base {name: a, kind: md_elastic, material: cu, cells: [3, 3, 3], temperature: 298}
+  - <<: *base
+    name: b
+    cells: [4, 4, 4]
+  - {<<: [*base], name: c}
+)");
+  const auto written = write("written.yaml", std::string(kHeader) + R"(stages:
+  - {name: a, kind: md_elastic, material: cu, cells: [3, 3, 3], temperature: 298}
+  - {name: b, kind: md_elastic, material: cu, cells: [4, 4, 4], temperature: 298}
+  - {name: c, kind: md_elastic, material: cu, cells: [3, 3, 3], temperature: 298}
+)");
+  const auto m = load_workflow(merged, md_only());
+  const auto w = load_workflow(written, md_only());
+  ASSERT_TRUE(m.errors.empty()) << m.errors[0].format();
+  ASSERT_TRUE(w.errors.empty()) << w.errors[0].format();
+  for (std::size_t i = 0; i < 3; ++i) {
+    YAML::Emitter a, b;
+    a << m.workflow->stages[i].params;
+    b << w.workflow->stages[i].params;
+    EXPECT_EQ(std::string(a.c_str()), std::string(b.c_str())) << "stage " << i;
+  }
+  const std::string bad = errors_of(
+      "merge_scalar.yaml",
+      std::string(kHeader) + "stages:\n  - {<<: 5, name: a, kind: md_elastic, material: cu}\n");
+  EXPECT_NE(bad.find("merge_scalar.yaml:10:10: error: <<: a merge key `<<` takes a map"),
+            std::string::npos)
+      << bad;
+}
+
 TEST(Workflow, RefusesAliasesThatCannotBeExpanded) {
   const std::string undefined =
       errors_of("undefined.yaml", std::string(kHeader) +

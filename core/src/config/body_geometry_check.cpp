@@ -98,7 +98,8 @@ void check_inside_box(const StageCheck& c, const std::vector<Placed>& bodies) {
   const auto lo = box["lo"].as<std::vector<double>>();
   const auto hi = box["hi"].as<std::vector<double>>();
   std::array<bool, 3> periodic{};
-  for (const auto& a : box["periodic"]) periodic[static_cast<std::size_t>(a.Scalar()[0] - 'x')] = true;
+  for (const auto& a : box["periodic"])
+    periodic[static_cast<std::size_t>(a.Scalar()[0] - 'x')] = true;
   for (const Placed& b : bodies) {
     if (!b.raw) continue;
     const geometry::Box r = b.region->bounds();
@@ -142,11 +143,11 @@ void check_meets_bodies(const StageCheck& c, const std::vector<Placed>& regions,
     });
     if (meets) continue;
     const geometry::Box box = r.region->bounds();
-    c.validator.error(r.raw["region"], r.path + ".region",
-                      fmt::format("{} '{}' holds no particle: its region {} .. {} meets no body "
-                                  "(bodies: {})",
-                                  what, r.name, corner(box.lo), corner(box.hi),
-                                  fmt::join(names, ", ")));
+    c.validator.error(
+        r.raw["region"], r.path + ".region",
+        fmt::format("{} '{}' holds no particle: its region {} .. {} meets no body "
+                    "(bodies: {})",
+                    what, r.name, corner(box.lo), corner(box.hi), fmt::join(names, ", ")));
   }
 }
 
@@ -154,9 +155,9 @@ void check_names_once(const StageCheck& c, const std::vector<Placed>& regions) {
   for (std::size_t i = 0; i < regions.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       if (regions[i].name != regions[j].name) continue;
-      c.validator.error(regions[i].raw["name"], regions[i].path + ".name",
-                        fmt::format("the region name '{}' is already given by regions[{}]",
-                                    regions[i].name, j));
+      c.validator.error(
+          regions[i].raw["name"], regions[i].path + ".name",
+          fmt::format("the region name '{}' is already given by regions[{}]", regions[i].name, j));
     }
   }
 }

@@ -190,6 +190,10 @@ YAML::Node to_yaml(const Param& p) {
     n["only_with"]["key"] = p.only_with.first;
     n["only_with"]["value"] = p.only_with.second;
   }
+  if (!p.required_with.first.empty()) {
+    n["required_with"]["key"] = p.required_with.first;
+    n["required_with"]["value"] = p.required_with.second;
+  }
   for (const auto& f : p.fields) n["fields"].push_back(to_yaml(f));
   if (!p.discriminator.empty()) n["discriminator"] = p.discriminator;
   for (const auto& [v, fs] : p.variants) {
@@ -244,6 +248,10 @@ Param param_from_yaml(const YAML::Node& n) {
   if (n["only_with"]) {
     p.only_with = {n["only_with"]["key"].as<std::string>(),
                    n["only_with"]["value"].as<std::string>()};
+  }
+  if (n["required_with"]) {
+    p.required_with = {n["required_with"]["key"].as<std::string>(),
+                       n["required_with"]["value"].as<std::string>()};
   }
   for (const auto& f : n["fields"]) p.fields.push_back(param_from_yaml(f));
   if (n["discriminator"]) p.discriminator = n["discriminator"].as<std::string>();

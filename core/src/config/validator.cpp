@@ -357,6 +357,14 @@ void Validator::check_only_with(const std::vector<const Param*>& fields, const Y
           fmt::format("'{}' applies only with {}: {}{}", f->name, key, value,
                       actual.empty() ? "" : fmt::format(" (here {} is '{}')", key, actual)));
   }
+  for (const auto* f : fields) {
+    const auto& [key, value] = f->required_with;
+    if (key.empty() || node[f->name].IsDefined()) continue;
+    const YAML::Node other = resolved[key];
+    if (!other.IsDefined() || !other.IsScalar() || other.Scalar() != value) continue;
+    error(node, join_path(path, f->name),
+          fmt::format("required key '{}' is missing: {}: {} needs it", f->name, key, value));
+  }
 }
 
 YAML::Node Validator::check(const Param& p, const YAML::Node& node, const std::string& path) {

@@ -1,5 +1,7 @@
 #include "pbms/config/yaml_source.hpp"
 
+#include <algorithm>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -221,6 +223,49 @@ class AliasCheck : public YAML::EventHandler {
 
 }  // namespace
 
+namespace {
+
+// YAML merge keys (`<<: *defaults`, or a list of such maps): a map takes
+// each merged map's keys it does not give itself, the first merged map
+// first, and loses the `<<` key. yaml-cpp reads `<<` as a plain key. False
+// (with the error) for a `<<` that holds anything but maps.
+bool expand_merge_keys(YAML::Node node, Validator& v, int depth) {
+  if (depth > 256) return true;  // the alias check bounds what the reader expands
+  if (node.IsSequence()) {
+    for (auto child : node) {
+      if (!expand_merge_keys(child, v, depth + 1)) return false;
+    }
+    return true;
+  }
+  if (!node.IsMap()) return true;
+  const YAML::Node& view = node;  // const lookups add no key
+  const YAML::Node merged = view["<<"];
+  if (merged) {
+    std::vector<YAML::Node> sources;
+    if (merged.IsMap()) sources.push_back(merged);
+    for (std::size_t i = 0; merged.IsSequence() && i < merged.size(); ++i) {
+      sources.push_back(merged[i]);
+    }
+    if (sources.empty() || !std::all_of(sources.begin(), sources.end(),
+                                        [](const YAML::Node& m) { return m.IsMap(); })) {
+      v.error(merged, "<<", "a merge key `<<` takes a map (`<<: *name`) or a list of maps");
+      return false;
+    }
+    node.remove("<<");
+    for (const YAML::Node& m : sources) {
+      for (const auto& kv : m) {
+        if (!view[kv.first.Scalar()]) node[kv.first.Scalar()] = kv.second;
+      }
+    }
+  }
+  for (auto kv : node) {
+    if (!expand_merge_keys(kv.second, v, depth + 1)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::optional<YAML::Node> parse_yaml_source(const std::string& text, Validator& v,
                                             const std::string& what) {
   const YAML::Mark top = mark_at(0, 0);
@@ -257,6 +302,7 @@ std::optional<YAML::Node> parse_yaml_source(const std::string& text, Validator& 
           fmt::format("the file holds no YAML value (only comments?): {} is a YAML map", what));
       return std::nullopt;
     }
+    if (!expand_merge_keys(root, v, 0)) return std::nullopt;
     return root;
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp stops at a parser depth of 2000 (its message says only "bad file").

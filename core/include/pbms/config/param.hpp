@@ -74,6 +74,9 @@ struct Param {
   // lateral: periodic. Travels in --describe, so the coupler refuses it
   // before any rank starts.
   std::pair<std::string, std::string> only_with;
+  // Required when the sibling key `first` resolves to `second` (dpd_run's
+  // `tension` map with mode: tension). Travels in --describe.
+  std::pair<std::string, std::string> required_with;
   // Not given together with the sibling key named here (an empty list
   // counts as not given): `initial` and `bodies` both say where a stage's
   // particles come from.
@@ -178,6 +181,10 @@ struct Param {
   }
   Param& only_when(std::string key, std::string value) {
     only_with = {std::move(key), std::move(value)};
+    return *this;
+  }
+  Param& required_when(std::string key, std::string value) {
+    required_with = {std::move(key), std::move(value)};
     return *this;
   }
   Param& exactly_one_key() {
