@@ -1,7 +1,9 @@
 source "$(dirname "$0")/lib.sh"
-# Every config users copy must validate (each also runs in some test).
+# Every config users copy must validate, the templates included (each
+# also runs in some test; configs/templates/concurrent_tension.yaml in
+# template_concurrent_tension).
 n=0
-for f in "$ROOT"/configs/*.yaml; do
+for f in "$ROOT"/configs/*.yaml "$ROOT"/configs/templates/*.yaml; do
   "$PBMS" validate "$f" || fail "$f does not validate"
   n=$((n + 1))
 done
