@@ -156,23 +156,6 @@ void check_free(const config::StageCheck& c, const YAML::Node& potential) {
   }
 }
 
-// The workflow stage of that name, or a null node.
-YAML::Node stage_named(const config::StageCheck& c, const std::string& name) {
-  for (const auto& s : c.workflow["stages"]) {
-    if (s["name"].Scalar() == name) return s;
-  }
-  return YAML::Node();
-}
-
-// "stage.output" of a {from: ...} node, split; empty for a literal.
-std::pair<std::string, std::string> source_of(const YAML::Node& raw) {
-  if (!raw || !raw.IsMap() || !raw["from"]) return {};
-  const std::string from = raw["from"].Scalar();
-  const auto dot = from.find('.');
-  if (dot == std::string::npos) return {};
-  return {from.substr(0, dot), from.substr(dot + 1)};
-}
-
 // A fit judged at T > 0 against MD's values at another temperature would
 // fit thermal expansion and softening that are not there: md_elastic's
 // c11 (no _at_t) is its 0 K value, an md_isotherm has its own temperature.
@@ -181,8 +164,8 @@ void check_target_temperatures(const config::StageCheck& c) {
   if (!(t > 0.0)) return;
   const YAML::Node elastic = c.raw["elastic"];
   for (const char* k : {"c11", "c12", "c44"}) {
-    const auto [stage, output] = source_of(elastic ? elastic[k] : YAML::Node());
-    const YAML::Node src = stage.empty() ? YAML::Node() : stage_named(c, stage);
+    const auto [stage, output] = config::reference_source(elastic ? elastic[k] : YAML::Node());
+    const YAML::Node src = stage.empty() ? YAML::Node() : config::stage_named(c.workflow, stage);
     if (!src.IsMap() || src["kind"].Scalar() != "md_elastic" || output != k) continue;
     c.validator.error(elastic[k], fmt::format("{}.elastic.{}", c.path, k),
                       fmt::format("the fit judges at {:g} K, but {}.{} is MD's 0 K value: use "
@@ -190,8 +173,9 @@ void check_target_temperatures(const config::StageCheck& c) {
                                   t, stage, output, stage, output));
   }
   const YAML::Node iso = c.raw["isotherm"];
-  const auto [stage, output] = source_of(iso && iso.IsMap() ? iso["table"] : YAML::Node());
-  const YAML::Node src = stage.empty() ? YAML::Node() : stage_named(c, stage);
+  const auto [stage, output] =
+      config::reference_source(iso && iso.IsMap() ? iso["table"] : YAML::Node());
+  const YAML::Node src = stage.empty() ? YAML::Node() : config::stage_named(c.workflow, stage);
   if (!src.IsMap() || !src["temperature"]) return;
   const double md = src["temperature"].as<double>();
   if (std::abs(md - t) > 1.0) {

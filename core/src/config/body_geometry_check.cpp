@@ -60,14 +60,6 @@ std::vector<Placed> placed(const YAML::Node& list, const YAML::Node& raw, const 
   return out;
 }
 
-// The stage of that name among the workflow's stages, or a null node.
-YAML::Node stage_named(const YAML::Node& workflow, const std::string& name) {
-  for (const auto& s : workflow["stages"]) {
-    if (s["name"].Scalar() == name) return s;
-  }
-  return YAML::Node();
-}
-
 // This stage's bodies, or those of the stage its state comes from (followed
 // back through `initial.from_stage`); none known for a file's state.
 std::vector<Placed> bodies_of(const StageCheck& c) {

@@ -146,4 +146,19 @@ DriverDescription driver_from_yaml(const YAML::Node& n) {
   return d;
 }
 
+YAML::Node stage_named(const YAML::Node& workflow, const std::string& name) {
+  for (const auto& s : workflow["stages"]) {
+    if (s["name"].Scalar() == name) return s;
+  }
+  return YAML::Node();
+}
+
+std::pair<std::string, std::string> reference_source(const YAML::Node& node) {
+  if (!node || !node.IsMap() || !node["from"] || !node["from"].IsScalar()) return {};
+  const std::string from = node["from"].Scalar();
+  const auto dot = from.find('.');
+  if (dot == std::string::npos) return {};
+  return {from.substr(0, dot), from.substr(dot + 1)};
+}
+
 }  // namespace pbms::config

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -38,6 +39,12 @@ struct StageCheck {
   const std::vector<DriverDescription>& drivers;
   const YAML::Node& workflow;  // the whole resolved workflow (other stages, launch)
 };
+
+// For checks that look at other stages: the stage of that name among
+// workflow["stages"] (a null node when there is none), and the stage and
+// output a `{from: stage.output}` node names (both empty for a literal).
+[[nodiscard]] YAML::Node stage_named(const YAML::Node& workflow, const std::string& name);
+[[nodiscard]] std::pair<std::string, std::string> reference_source(const YAML::Node& node);
 
 struct StageKindSpec {
   std::string kind;     // "md_isotherm"
