@@ -1,6 +1,7 @@
 #include "daemon.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -20,6 +21,7 @@
 #include "result_cache.hpp"
 #include "run_record.hpp"
 #include "scheduler.hpp"
+#include "stage_references.hpp"
 #include "stages/coupler_stage.hpp"
 
 namespace pbms::coupler {
@@ -54,67 +56,9 @@ class Console {
   bool open_ = false;
 };
 
-// A table output as a map of its columns, each with its unit.
-YAML::Node table_node(const StageResults& results, const std::string& table) {
-  YAML::Node out(YAML::NodeType::Map);
-  for (const auto& c : results.columns) {
-    if (c.table != table) continue;
-    out[c.name]["unit"] = c.unit;
-    out[c.name]["values"] = c.data;
-  }
-  return out;
-}
-
-// Replaces every {from: stage.output} with that output of an earlier stage:
-// a scalar in metal units, or a table as a map of columns.
-YAML::Node resolve_references(const YAML::Node& node,
-                              const std::map<std::string, StageResults>& done) {
-  if (node.IsMap() && node.size() == 1 && node["from"] && node["from"].IsScalar()) {
-    const std::string target = node["from"].Scalar();
-    const auto dot = target.find('.');
-    const std::string stage = target.substr(0, dot), key = target.substr(dot + 1);
-    const auto it = done.find(stage);
-    if (it != done.end()) {
-      for (const auto& s : it->second.scalars) {
-        if (s.key == key) return YAML::Node(units::to_metal(s.value, s.unit));
-      }
-      YAML::Node table = table_node(it->second, key);
-      if (table.size() > 0) return table;
-      // A map output (a fitted potential) travels as YAML text.
-      const auto attr = it->second.attributes.find(key);
-      if (attr != it->second.attributes.end()) {
-        YAML::Node map = YAML::Load(attr->second);
-        if (map.IsMap()) return map;
-      }
-    }
-    throw Error(fmt::format("stage '{}' did not produce '{}'", stage, key));
-  }
-  if (node.IsMap()) {
-    YAML::Node out(YAML::NodeType::Map);
-    for (const auto& kv : node) out[kv.first] = resolve_references(kv.second, done);
-    return out;
-  }
-  if (node.IsSequence()) {
-    YAML::Node out(YAML::NodeType::Sequence);
-    for (const auto& e : node) out.push_back(resolve_references(e, done));
-    return out;
-  }
-  return node;
-}
-
-// The materials a stage can see: every one whose references are already
-// resolvable. The validator made sure that a stage's own materials are.
-YAML::Node resolve_materials(const YAML::Node& materials,
-                             const std::map<std::string, StageResults>& done) {
-  YAML::Node out(YAML::NodeType::Map);
-  for (const auto& kv : materials) {
-    try {
-      out[kv.first] = resolve_references(kv.second, done);
-    } catch (const Error&) {
-      // Refers to a stage that has not run yet: not this stage's material.
-    }
-  }
-  return out;
+// "stages[3]": where a stage's keys sit in the workflow, for messages.
+std::string stage_path(std::size_t index) {
+  return fmt::format("stages[{}]", index);
 }
 
 class Daemon {
@@ -248,7 +192,7 @@ class Daemon {
     rs.index = static_cast<int32_t>(index);
     rs.name = stage.name;
     rs.kind = stage.kind;
-    rs.params_yaml = yaml_text(resolve_references(stage.params, done_));
+    rs.params_yaml = yaml_text(resolve_references(stage.params, done_, stage_path(index)));
     rs.materials_yaml = yaml_text(resolve_materials(wf_.materials, done_));
     rs.run_dir = record_->dir().string();
     rs.seed = wf_.seed;
@@ -308,7 +252,7 @@ class Daemon {
   void run_coupler_stage(size_t index) {
     const auto& stage = wf_.stages[index];
     config::StageConfig resolved = stage;
-    resolved.params = resolve_references(stage.params, done_);
+    resolved.params = resolve_references(stage.params, done_, stage_path(index));
     record_->stage_started(stage);
     log(fmt::format("stage {}/{} '{}' ({}) on the coupler, using {}", index + 1, wf_.stages.size(),
                     stage.name, stage.kind, fmt::join(stage.drivers, ", ")));

@@ -116,6 +116,21 @@ void check_continuum(const config::StageCheck& c) {
   }
 }
 
+// How far a grip has moved along the pull after `time` ps: its velocity,
+// reached over its ramp_time (a linear ramp), or zero when it is frozen.
+std::optional<double> grip_travel(const config::StageCheck& c, const std::string& grip, int axis,
+                                  double time) {
+  for (const auto& m : c.resolved["motion"]) {
+    if (m["group"].Scalar() != grip) continue;
+    if (m["kind"].Scalar() == "frozen" || !m["velocity"]) return 0.0;
+    const double v = m["velocity"][axis].as<double>();
+    const double ramp = m["ramp_time"] ? m["ramp_time"].as<double>() : 0.0;
+    if (time >= ramp) return v * (time - 0.5 * ramp);
+    return v * time * time / (2.0 * ramp);
+  }
+  return std::nullopt;
+}
+
 // The velocity of a grip along the pull, or nothing for a grip with no
 // motion; frozen is zero.
 std::optional<double> grip_speed(const config::StageCheck& c, const std::string& grip, int axis) {
@@ -157,6 +172,31 @@ geometry::RegionPtr group_region(const config::StageCheck& c, const std::string&
   return nullptr;
 }
 
+// E is the slope up to fit_strain: a run that stops short of it has no
+// fit window, and E came out NaN. The length is the grips' outer span (a
+// little above the body's), so the estimate errs on the side of passing.
+void check_fit_window(const config::StageCheck& c) {
+  const YAML::Node t = c.resolved["tension"];
+  if (!t || !t.IsMap()) return;
+  const std::string left = t["left_grip"].Scalar(), right = t["right_grip"].Scalar();
+  const auto l = group_region(c, left), r = group_region(c, right);
+  const int axis = axis_index(t["axis"].as<std::string>("x"));
+  const double time = c.resolved["steps"].as<double>() * c.resolved["time_step"].as<double>();
+  const auto dl = grip_travel(c, left, axis, time), dr = grip_travel(c, right, axis, time);
+  if (!l || !r || !dl || !dr) return;
+  const auto a = static_cast<std::size_t>(axis);
+  const double length = r->bounds().hi[a] - l->bounds().lo[a];
+  const double reached = (*dr - *dl) / length;
+  const double fit = t["fit_strain"].as<double>();
+  // Grips that are one group or do not pull apart are check_grips's to report.
+  if (left == right || !(*dr > *dl) || !(length > 0.0) || fit <= reached) return;
+  c.validator.error(c.raw["tension"], c.path + ".tension.fit_strain",
+                    fmt::format("fit_strain {:g} is beyond the strain the grips reach: they move "
+                                "{:.3g} Å apart in {:g} ps over a rod of about {:.4g} Å, {:.3g}; "
+                                "run longer or fit to a smaller strain",
+                                fit, *dr - *dl, time, length, reached));
+}
+
 // A grip moves its planes rigidly: an opening measured on them is the
 // grip's, not the interface's.
 void check_opening_off_grips(const config::StageCheck& c) {
@@ -189,6 +229,7 @@ void check_concurrent_stage(const config::StageCheck& c) {
   check_continuum(c);
   check_grips(c);
   check_opening_off_grips(c);
+  check_fit_window(c);
 }
 
 }  // namespace pbms::coupling
