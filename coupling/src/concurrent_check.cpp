@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "pbms/config/validator.hpp"
+#include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 
 namespace pbms::coupling {
@@ -17,8 +18,10 @@ int axis_index(const std::string& a) {
   return a == "x" ? 0 : a == "y" ? 1 : 2;
 }
 
-// Bounding boxes that share a volume: a region's particles could belong to
-// both, and which solver moves them would depend on the list's order.
+// Bounding boxes that share a volume without one holding the other: a
+// particle there could belong to both, and which solver moves it would
+// depend on the list's order. A region nested in another (a core in a
+// shell) is fine: the inner one's solver wins inside it.
 void check_regions(const config::StageCheck& c) {
   const YAML::Node regions = c.resolved["regions"];
   std::vector<geometry::Box> boxes;
@@ -30,9 +33,11 @@ void check_regions(const config::StageCheck& c) {
         common.lo[a] = std::max(boxes[i].lo[a], boxes[j].lo[a]);
         common.hi[a] = std::min(boxes[i].hi[a], boxes[j].hi[a]);
       }
-      if (!common.empty() && common.volume() > 0.0) {
+      const bool nested = nests_in(boxes[i], boxes[j]) || nests_in(boxes[j], boxes[i]);
+      if (!common.empty() && common.volume() > 0.0 && !nested) {
         c.validator.error(c.raw["regions"][i], fmt::format("{}.regions[{}]", c.path, i),
-                          fmt::format("region '{}' overlaps region '{}'",
+                          fmt::format("region '{}' overlaps region '{}' without one holding the "
+                                      "other (regions may nest: the inner one's solver wins)",
                                       regions[i]["name"].Scalar(), regions[j]["name"].Scalar()));
       }
     }

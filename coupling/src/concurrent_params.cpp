@@ -22,11 +22,21 @@ InterfaceTreatment treatment(const std::string& name) {
 
 }  // namespace
 
-Solver ConcurrentParams::solver_at(const geometry::Vec3& x) const {
-  for (const auto& r : regions) {
-    if (r.region->contains(x)) return r.solver;
+bool nests_in(const geometry::Box& inner, const geometry::Box& outer) {
+  bool within = true;
+  for (std::size_t a = 0; a < 3; ++a) {
+    within = within && inner.lo[a] >= outer.lo[a] && inner.hi[a] <= outer.hi[a];
   }
-  return Solver::kDpd;
+  return within && !(inner == outer);
+}
+
+Solver ConcurrentParams::solver_at(const geometry::Vec3& x) const {
+  const ConcurrentRegion* holder = nullptr;
+  for (const auto& r : regions) {
+    if (!r.region->contains(x)) continue;
+    if (!holder || nests_in(r.region->bounds(), holder->region->bounds())) holder = &r;
+  }
+  return holder ? holder->solver : Solver::kDpd;
 }
 
 std::string ConcurrentParams::part(Solver s) const {

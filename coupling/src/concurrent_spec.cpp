@@ -132,7 +132,12 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
     if (p.name != "grid") s.params.push_back(std::move(p));
   }
   s.params.push_back(shared_grid().require());
-  s.params.push_back(Param::list_of("regions", region_entry(), "The body's parts").require());
+  s.params.push_back(Param::list_of("regions", region_entry(),
+                                    "The body's parts: each particle goes to the innermost "
+                                    "region holding it (a region may nest in another, a core "
+                                    "in a shell; others may touch but not overlap), particles "
+                                    "in none stay DPD")
+                         .require());
   s.params.push_back(
       Param::choice("interface", {"none", "seed", "momentum_conserving"},
                     "none: the grid alone joins the parts; seed: DPD particles take pair forces "

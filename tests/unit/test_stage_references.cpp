@@ -50,8 +50,7 @@ TEST(StageReferences, ANonFiniteSourceIsAnErrorNamingTheKey) {
   const YAML::Node materials = YAML::Load(
       "{cu_j2: {kind: j2_plasticity, youngs_modulus: {from: elastic.youngs_modulus_100}}, "
       "later: {kind: j2_plasticity, youngs_modulus: {from: not_yet.e}}}");
-  EXPECT_THROW((void)resolve_materials(materials, elastic_done(std::nan(""))),
-               NonFiniteReference);
+  EXPECT_THROW((void)resolve_materials(materials, elastic_done(std::nan(""))), NonFiniteReference);
   const YAML::Node seen = resolve_materials(materials, elastic_done(98.0));
   EXPECT_TRUE(seen["cu_j2"]);
   EXPECT_FALSE(seen["later"]);  // its stage has not run: not this stage's material

@@ -22,6 +22,10 @@ namespace pbms::coupling {
 
 enum class Solver { kDpd, kMpm };
 
+// Whether box `inner` lies within `outer` and is not the same box: a
+// region nested in another, whose solver wins inside it.
+[[nodiscard]] bool nests_in(const geometry::Box& inner, const geometry::Box& outer);
+
 struct ConcurrentRegion {
   std::string name;
   Solver solver = Solver::kDpd;
@@ -92,8 +96,9 @@ struct ConcurrentParams {
   [[nodiscard]] double point_lattice_constant() const {
     return lattice_constant.value_or(material_lattice_constant);
   }
-  // The solver of a particle at x: the first region holding it, DPD when
-  // none does (a flyer outside the body's regions).
+  // The solver of a particle at x: the innermost region holding it (regions
+  // may nest: a core inside a shell), else the first; DPD when none does (a
+  // flyer outside the body's regions).
   [[nodiscard]] Solver solver_at(const geometry::Vec3& x) const;
   // Which part of the body a solver advances, for messages: "the MPM part
   // (region 'right')".
