@@ -16,8 +16,12 @@ std::string format_duration(double s) {
 
 std::string ProgressMeter::format(int64_t step, int64_t total, double sim_time_ps,
                                   const std::string& phase, double now_s) const {
+  // The rate counts from the first report on: the steps before it (a
+  // stage's first report may come late) took time the meter never saw,
+  // and half a second is too short to measure a rate over.
   const double elapsed = start_s_ >= 0 ? now_s - start_s_ : 0.0;
-  const double rate = elapsed > 0 ? static_cast<double>(step) / elapsed : 0.0;
+  const double rate =
+      elapsed >= kShortest ? static_cast<double>(step - start_step_) / elapsed : 0.0;
   const double eta = rate > 0 ? static_cast<double>(total - step) / rate : NAN;
   const double pct = total > 0 ? 100.0 * static_cast<double>(step) / static_cast<double>(total) : 0;
   // The first report has no elapsed time to measure a rate against.
@@ -34,7 +38,10 @@ std::string ProgressMeter::format(int64_t step, int64_t total, double sim_time_p
 
 std::optional<std::string> ProgressMeter::update(int64_t step, int64_t total, double sim_time_ps,
                                                  const std::string& phase, double now_s) {
-  if (start_s_ < 0) start_s_ = now_s;
+  if (start_s_ < 0) {
+    start_s_ = now_s;
+    start_step_ = step;
+  }
   bool due = false;
   if (terminal_) {
     due = last_print_s_ < 0 || now_s - last_print_s_ >= 0.2 || step >= total;

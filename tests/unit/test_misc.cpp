@@ -26,6 +26,18 @@ TEST(ProgressMeter, RateAndEta) {
   EXPECT_EQ(pbms::format_duration(3725), "1h02m");
 }
 
+// A stage whose first report comes at step 5,000, 0.04 s after the meter
+// started, once showed 137,508 steps/s: the rate counts from the first
+// report's step, and not before half a second has passed.
+TEST(ProgressMeter, RateCountsFromTheFirstReport) {
+  pbms::ProgressMeter m("run", true);
+  m.update(5000, 100000, -1.0, "", 10.0);
+  EXPECT_NE(m.format(5500, 100000, -1.0, "", 10.04).find("- steps/s"), std::string::npos);
+  const auto line = m.format(7000, 100000, -1.0, "", 12.0);
+  EXPECT_NE(line.find("1000 steps/s"), std::string::npos) << line;
+  EXPECT_NE(line.find("ETA 1m33s"), std::string::npos) << line;
+}
+
 TEST(Postmortem, ParsesOpenMpiReports) {
   const auto killed = pbms::coupler::parse_mpirun_output(
       "--------\nmpirun noticed that process rank 2 with PID 4242 on node vm exited on signal 9 "

@@ -28,7 +28,9 @@ class ProgressMeter {
   std::string label_;
   bool terminal_;
   std::string item_;
+  static constexpr double kShortest = 0.5;  // s: no rate over a shorter span
   double start_s_ = -1.0;
+  int64_t start_step_ = 0;
   double last_print_s_ = -1.0;
   int last_decile_ = -1;
 };
