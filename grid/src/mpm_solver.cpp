@@ -705,16 +705,27 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     return;
   }
   x = d.wrapped(x, patch_.periodic);
-  if (!d.contains(x)) point_off_grid(points.id[p], x, v);
+  if (!d.contains(x)) point_off_grid(points.id[p], x, v, dt);
 }
 
 // A point whose position is not finite did not leave the grid: the step
 // blew up (a NaN force or velocity), and the message says so.
-void MpmSolver::point_off_grid(int64_t id, const Vec3& x, const Vec3& v) const {
+// One that jumped more than half a cell in its last step names the likely
+// cause, a time step too large for the model.
+void MpmSolver::point_off_grid(int64_t id, const Vec3& x, const Vec3& v, double dt) const {
   const char* noun = opt_.point_noun.c_str();
   if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])) {
-    throw Error(
-        fmt::format("{} {} left the grid at ({:.6g}, {:.6g}, {:.6g})", noun, id, x[0], x[1], x[2]));
+    const double jump = dt * std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double h = patch_.domain.cell_size();
+    const std::string cause =
+        jump > 0.5 * h ? fmt::format(
+                             ": its last step moved it {:.3g} Å, {:.2g} cells, at {:.4g} "
+                             "Å/ps; a time step of {:g} ps is too large for this motion "
+                             "(or the model blew up)",
+                             jump, jump / h, jump / dt, dt)
+                       : "";
+    throw Error(fmt::format("{} {} left the grid at ({:.6g}, {:.6g}, {:.6g}){}", noun, id, x[0],
+                            x[1], x[2], cause));
   }
   throw Error(
       fmt::format("{} {} has a non-finite position ({:.6g}, {:.6g}, {:.6g}), velocity "

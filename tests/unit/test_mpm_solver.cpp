@@ -174,6 +174,27 @@ TEST(MpmSolver, PointLeavingTheGridIsNamed) {
   } catch (const pbms::Error& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("material point 4711 left the grid at (4."), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("time step"), std::string::npos) << msg;  // 0.1 cell a step: no blame
+  }
+}
+
+// One that jumped more than half a cell in its last step names the likely
+// cause: 3 Å/ps for 0.5 ps is 1.5 cells of 1 Å.
+TEST(MpmSolver, APointJumpingOffTheGridBlamesTheTimeStep) {
+  grid::RegularGrid g({0, 0, 0}, 1.0, {4, 1, 1});
+  MpmSolver solver(g, grid::ShapeFunctionRegistry::create("linear"), elastic(100.0, 0.0), {});
+  MaterialPoints pts;
+  fill(pts, g, {3, 0, 0}, {4, 1, 1}, 1, 1.0);
+  pts.v[0] = {3.0, 0.0, 0.0};
+  try {
+    solver.step(pts, {}, 0.5);
+    FAIL() << "the point should have left the grid";
+  } catch (const pbms::Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("its last step moved it 1.5 Å, 1.5 cells, at 3 Å/ps; a time step of 0.5 "
+                       "ps is too large"),
+              std::string::npos)
+        << msg;
   }
 }
 

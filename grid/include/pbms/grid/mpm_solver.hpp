@@ -266,7 +266,7 @@ class MpmSolver {
   void update_stress_block(MaterialPoints& points, size_t p0, size_t m, MaterialBlock& b,
                            double dt) const;
   void move_point(MaterialPoints& points, size_t p, const Vec3& v, double dt) const;
-  [[noreturn]] void point_off_grid(int64_t id, const Vec3& x, const Vec3& v) const;
+  [[noreturn]] void point_off_grid(int64_t id, const Vec3& x, const Vec3& v, double dt) const;
   void sum_rigid();
   void impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const;
   void hold_prescribed(const MaterialPoints& points, const BoundaryConditions& bc, size_t p,
