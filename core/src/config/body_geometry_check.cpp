@@ -17,8 +17,9 @@ namespace {
 struct Placed {
   std::string name;
   geometry::RegionPtr region;
-  YAML::Node raw;  // where to report (null for an earlier stage's body)
+  YAML::Node raw;  // where to report
   std::string path;
+  bool own = true;  // false: an earlier stage's body, reported there
 };
 
 geometry::Box common_box(const geometry::Box& a, const geometry::Box& b) {
@@ -50,12 +51,13 @@ std::optional<geometry::Vec3> common_point(const geometry::Region& a, const geom
   return std::nullopt;
 }
 
-std::vector<Placed> placed(const YAML::Node& list, const YAML::Node& raw, const std::string& path) {
+std::vector<Placed> placed(const YAML::Node& list, const YAML::Node& raw, const std::string& path,
+                           bool own = true) {
   std::vector<Placed> out;
   for (std::size_t i = 0; list && i < list.size(); ++i) {
     out.push_back({list[i]["name"].Scalar(), geometry::region_from_yaml(list[i]["region"]),
                    raw && raw.IsSequence() && i < raw.size() ? raw[i] : YAML::Node(),
-                   fmt::format("{}[{}]", path, i)});
+                   fmt::format("{}[{}]", path, i), own});
   }
   return out;
 }
@@ -72,7 +74,7 @@ std::vector<Placed> bodies_of(const StageCheck& c) {
     const YAML::Node& s = stage;
     if (s["bodies"] && s["bodies"].size() > 0) {
       const bool own = hops == 0;
-      return placed(s["bodies"], own ? c.raw["bodies"] : YAML::Node(), c.path + ".bodies");
+      return placed(s["bodies"], own ? c.raw["bodies"] : YAML::Node(), c.path + ".bodies", own);
     }
     const YAML::Node from = s["initial"] ? s["initial"]["from_stage"] : YAML::Node();
     if (!from || !from.IsScalar()) break;
@@ -93,7 +95,7 @@ void check_inside_box(const StageCheck& c, const std::vector<Placed>& bodies) {
   for (const auto& a : box["periodic"])
     periodic[static_cast<std::size_t>(a.Scalar()[0] - 'x')] = true;
   for (const Placed& b : bodies) {
-    if (!b.raw) continue;
+    if (!b.own) continue;
     const geometry::Box r = b.region->bounds();
     for (std::size_t a = 0; a < 3; ++a) {
       if (periodic[a] || (r.lo[a] >= lo[a] && r.hi[a] <= hi[a])) continue;
@@ -110,7 +112,7 @@ void check_inside_box(const StageCheck& c, const std::vector<Placed>& bodies) {
 void check_apart(const StageCheck& c, const std::vector<Placed>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
-      if (!bodies[i].raw) continue;
+      if (!bodies[i].own) continue;
       const geometry::Box box = common_box(bodies[i].region->bounds(), bodies[j].region->bounds());
       if (box.empty() || box.volume() <= 0.0) continue;
       const auto x = common_point(*bodies[i].region, *bodies[j].region);
