@@ -121,28 +121,27 @@ void check_continuum(const config::StageCheck& c) {
   }
 }
 
-// How far a grip has moved along the pull after `time` ps: its velocity,
-// reached over its ramp_time (a linear ramp), or zero when it is frozen.
-std::optional<double> grip_travel(const config::StageCheck& c, const std::string& grip, int axis,
-                                  double time) {
-  for (const auto& m : c.resolved["motion"]) {
-    if (m["group"].Scalar() != grip) continue;
-    if (m["kind"].Scalar() == "frozen" || !m["velocity"]) return 0.0;
-    const double v = m["velocity"][axis].as<double>();
-    const double ramp = m["ramp_time"] ? m["ramp_time"].as<double>() : 0.0;
-    if (time >= ramp) return v * (time - 0.5 * ramp);
-    return v * time * time / (2.0 * ramp);
-  }
-  return std::nullopt;
-}
+// A grip's motion along the pull: its velocity (zero when frozen) and the
+// time of its linear ramp to it.
+struct GripMotion {
+  double speed = 0.0;
+  double ramp_time = 0.0;
 
-// The velocity of a grip along the pull, or nothing for a grip with no
-// motion; frozen is zero.
-std::optional<double> grip_speed(const config::StageCheck& c, const std::string& grip, int axis) {
+  // How far the grip has moved after `time` ps.
+  [[nodiscard]] double travel(double time) const {
+    if (time >= ramp_time) return speed * (time - 0.5 * ramp_time);
+    return speed * time * time / (2.0 * ramp_time);
+  }
+};
+
+// Nothing for a grip that no motion entry names.
+std::optional<GripMotion> grip_motion(const config::StageCheck& c, const std::string& grip,
+                                      int axis) {
   for (const auto& m : c.resolved["motion"]) {
     if (m["group"].Scalar() != grip) continue;
-    if (m["kind"].Scalar() == "frozen" || !m["velocity"]) return 0.0;
-    return m["velocity"][axis].as<double>();
+    if (m["kind"].Scalar() == "frozen" || !m["velocity"]) return GripMotion{};
+    return GripMotion{m["velocity"][axis].as<double>(),
+                      m["ramp_time"] ? m["ramp_time"].as<double>() : 0.0};
   }
   return std::nullopt;
 }
@@ -161,12 +160,12 @@ void check_grips(const config::StageCheck& c) {
     return;
   }
   const int axis = axis_index(t["axis"].as<std::string>("x"));
-  const auto l = grip_speed(c, left, axis), r = grip_speed(c, right, axis);
-  if (l && r && !(*r - *l > 0.0)) {
+  const auto l = grip_motion(c, left, axis), r = grip_motion(c, right, axis);
+  if (l && r && !(r->speed - l->speed > 0.0)) {
     c.validator.error(raw, c.path + ".tension",
                       fmt::format("the grips do not pull the rod apart: '{}' moves at {:g} and "
                                   "'{}' at {:g} Å/ps along {} (the right one must be faster)",
-                                  left, *l, right, *r, "xyz"[axis]));
+                                  left, l->speed, right, r->speed, "xyz"[axis]));
   }
 }
 
@@ -187,19 +186,20 @@ void check_fit_window(const config::StageCheck& c) {
   const auto l = group_region(c, left), r = group_region(c, right);
   const int axis = axis_index(t["axis"].as<std::string>("x"));
   const double time = c.resolved["steps"].as<double>() * c.resolved["time_step"].as<double>();
-  const auto dl = grip_travel(c, left, axis, time), dr = grip_travel(c, right, axis, time);
-  if (!l || !r || !dl || !dr) return;
+  const auto ml = grip_motion(c, left, axis), mr = grip_motion(c, right, axis);
+  if (!l || !r || !ml || !mr) return;
+  const double dl = ml->travel(time), dr = mr->travel(time);
   const auto a = static_cast<std::size_t>(axis);
   const double length = r->bounds().hi[a] - l->bounds().lo[a];
-  const double reached = (*dr - *dl) / length;
+  const double reached = (dr - dl) / length;
   const double fit = t["fit_strain"].as<double>();
   // Grips that are one group or do not pull apart are check_grips's to report.
-  if (left == right || !(*dr > *dl) || !(length > 0.0) || fit <= reached) return;
+  if (left == right || !(dr > dl) || !(length > 0.0) || fit <= reached) return;
   c.validator.error(c.raw["tension"], c.path + ".tension.fit_strain",
                     fmt::format("fit_strain {:g} is beyond the strain the grips reach: they move "
                                 "{:.3g} Å apart in {:g} ps over a rod of about {:.4g} Å, {:.3g}; "
                                 "run longer or fit to a smaller strain",
-                                fit, *dr - *dl, time, length, reached));
+                                fit, dr - dl, time, length, reached));
 }
 
 // A grip moves its planes rigidly: an opening measured on them is the
