@@ -14,17 +14,9 @@ kill_one() {  # PROGRAM WORLD_RANK EXPECTED_PROGRAM_RANK
   # A bar at rest (the flyer still): it runs until killed, not off the grid.
   sed 's/steps: 300/steps: 200000/; s/velocity: \[5, 0, 0\]/velocity: [0, 0, 0]/' "$CONFIG" > long.yaml
   "$PBMS" run long.yaml > out.txt 2> err.txt &
-  local pid=$! run=runs/concurrent_small victim=""
-  for _ in $(seq 1 600); do
-    if [ -f "$run/manifest.yaml" ] && grep -q "step: [1-9]" "$run/manifest.yaml"; then break; fi
-    kill -0 $pid 2>/dev/null || { cat out.txt err.txt; fail "job ended before the kill"; }
-    sleep 0.1
-  done
-  for p in $(pgrep -f "build/bin/$program"); do
-    [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" == */$program ]] || continue
-    [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] || continue
-    if tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$world"; then victim=$p; fi
-  done
+  local pid=$! run=runs/concurrent_small victim
+  wait_for_step "$run" impact "[1-9]" $pid
+  victim=$(job_process "$program" "$world")
   [ -n "$victim" ] || fail "no $program process with world rank $world found"
   local start rc=0 elapsed
   start=$(date +%s.%N)

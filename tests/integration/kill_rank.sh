@@ -7,19 +7,8 @@ rm -rf runs
 "$PBMS" run "$(dirname "$0")/configs/kill_target.yaml" > out.txt 2> err.txt &
 pid=$!
 run=runs/kill_target
-for _ in $(seq 1 600); do
-  if [ -f "$run/manifest.yaml" ] && grep -q "stage: isotherm" "$run/manifest.yaml" &&
-     grep -q "step: [1-9]" "$run/manifest.yaml"; then break; fi
-  kill -0 $pid 2>/dev/null || { cat out.txt err.txt; fail "job ended before the kill"; }
-  sleep 0.1
-done
-victim=""
-for p in $(pgrep -f "build/bin/md_driver"); do
-  # Only md_driver processes of this job (mpirun's command line matches too).
-  [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" == */md_driver ]] || continue
-  [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] || continue
-  if tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_LOCAL_RANK=2\|OMPI_COMM_WORLD_RANK=2"; then victim=$p; fi
-done
+wait_for_step "$run" isotherm "[1-9]" $pid
+victim=$(job_process md_driver 2)
 [ -n "$victim" ] || fail "no md_driver process with world rank 2 found"
 start=$(date +%s.%N)
 kill -9 "$victim"

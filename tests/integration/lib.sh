@@ -24,3 +24,32 @@ for k in sys.argv[2].split('.'):
 print(node)
 PYEOF
 }
+
+# Waits (up to TRIES tenths of a second) until RUN_DIR's manifest shows stage
+# STAGE at a step matching STEP_RE, failing if the job PID ends first:
+#   wait_for_step RUN_DIR STAGE STEP_RE PID [TRIES]
+wait_for_step() {
+  local run=$1 stage=$2 step=$3 pid=$4 tries=${5:-600}
+  for _ in $(seq 1 "$tries"); do
+    if [ -f "$run/manifest.yaml" ] && grep -q "stage: $stage" "$run/manifest.yaml" &&
+       grep -q "step: $step" "$run/manifest.yaml"; then return 0; fi
+    kill -0 "$pid" 2>/dev/null || { cat out.txt err.txt; fail "job ended before the kill"; }
+    sleep 0.1
+  done
+}
+
+# The PID of this test's PROGRAM process (started from this directory; the
+# mpirun command line matches pgrep too), with world rank WORLD_RANK when
+# given; empty when there is none: job_process PROGRAM [WORLD_RANK]
+job_process() {
+  local program=$1 world=${2:-} p found=""
+  for p in $(pgrep -f "build/bin/$program"); do
+    [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" == */$program ]] || continue
+    [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] || continue
+    if [ -z "$world" ] ||
+       tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$world"; then
+      found=$p
+    fi
+  done
+  echo "$found"
+}

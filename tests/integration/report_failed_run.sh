@@ -29,18 +29,8 @@ rm -rf runs
 "$PBMS" run failed_report.yaml > out.txt 2> err.txt &
 pid=$!
 run="$PWD/runs/failed_report"
-for _ in $(seq 1 1200); do
-  if [ -f "$run/manifest.yaml" ] && grep -q "stage: impact" "$run/manifest.yaml" &&
-     grep -q "step: [1-9][0-9][0-9]" "$run/manifest.yaml"; then break; fi
-  kill -0 $pid 2>/dev/null || { cat out.txt err.txt; fail "the job ended before the kill"; }
-  sleep 0.1
-done
-victim=""
-for p in $(pgrep -f "build/bin/dpd_driver"); do
-  # Only this job's dpd_driver (mpirun's command line matches too).
-  [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" == */dpd_driver ]] || continue
-  [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] && victim=$p
-done
+wait_for_step "$run" impact "[1-9][0-9][0-9]" $pid 1200
+victim=$(job_process dpd_driver)
 [ -n "$victim" ] || { kill $pid; fail "no dpd_driver process of this job found"; }
 kill -9 "$victim"
 rc=0
