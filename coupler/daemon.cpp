@@ -117,6 +117,8 @@ class Daemon {
     scheduler_.welcome(true, "");
 
     log(fmt::format("run '{}' -> {}", wf_.run_name, record_->dir().string()));
+    // `coupler plan` printed these before the job started; the log keeps them.
+    for (const auto& w : wf_.warnings) file_log_->warn(w);
     for (const auto& l : scheduler_.links()) {
       log(fmt::format("  {} on {} rank{} (declares: {})", l.hello.program, l.app.size,
                       l.app.size == 1 ? "" : "s", fmt::join(l.hello.capabilities, ", ")));
@@ -288,6 +290,7 @@ class Daemon {
     into.columns.insert(into.columns.end(), r.columns.begin(), r.columns.end());
     into.files.insert(into.files.end(), r.files.begin(), r.files.end());
     into.attributes.insert(r.attributes.begin(), r.attributes.end());
+    into.warnings.insert(into.warnings.end(), r.warnings.begin(), r.warnings.end());
   }
 
   void finish_stage(const config::StageConfig& stage, protocol::StageDone done) {
@@ -297,6 +300,7 @@ class Daemon {
           std::isfinite(s.std_error) ? fmt::format(" ± {:.4g}", s.std_error) : "";
       log(fmt::format("  {} = {:.6g}{} {}", s.key, s.value, err, s.unit));
     }
+    for (const auto& w : done.results.warnings) log(fmt::format("  warning: {}", w));
     done_[stage.name] = std::move(done.results);
   }
 

@@ -31,6 +31,7 @@ std::optional<pbms::config::Workflow> load_or_report(
     const std::vector<std::string>& overrides) {
   auto r = pbms::config::load_workflow(config, drivers);
   for (const auto& e : r.errors) std::cerr << e.format() << "\n";
+  for (const auto& w : r.warnings) std::cerr << w.format() << "\n";
   if (!r.workflow) return std::nullopt;
   bool ok = true;
   for (const auto& o : overrides) {
@@ -110,8 +111,11 @@ int describe_drivers(const std::vector<pbms::config::DriverDescription>& drivers
 int validate_workflow(const Args& a, const std::vector<pbms::config::DriverDescription>& drivers) {
   auto wf = load_or_report(a.config, drivers, a.ranks);
   if (!wf) return 1;
-  std::cout << fmt::format("{}: ok ({} stage{}, run directory {})\n", a.config, wf->stages.size(),
-                           wf->stages.size() == 1 ? "" : "s", wf->run_dir().string());
+  const std::size_t nw = wf->warnings.size();
+  const std::string warned =
+      nw == 0 ? "" : fmt::format(", {} warning{} above", nw, nw == 1 ? "" : "s");
+  std::cout << fmt::format("{}: ok ({} stage{}, run directory {}{})\n", a.config, wf->stages.size(),
+                           wf->stages.size() == 1 ? "" : "s", wf->run_dir().string(), warned);
   return 0;
 }
 

@@ -135,6 +135,7 @@ RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout
     n["status"] = "pending";
     manifest_["stages"].push_back(n);
   }
+  for (const auto& w : wf.warnings) manifest_["config_warnings"].push_back(w);
   summary_["run"] = wf.run_name;
   summary_["stages"] = YAML::Node(YAML::NodeType::Map);
   write_manifest();
@@ -182,6 +183,7 @@ void RunRecord::stage_finished(const config::StageConfig& stage, const StageResu
   s["wall_s"] = wall_s;
   s["results"] = YAML::Node(YAML::NodeType::Map);
   for (const auto& r : results.scalars) s["results"][r.key] = scalar_node(r);
+  for (const auto& w : results.warnings) s["warnings"].push_back(w);
   summary_["stages"][stage.name] = s;
   write_summary();
   for (auto n : manifest_["stages"]) {
@@ -189,6 +191,7 @@ void RunRecord::stage_finished(const config::StageConfig& stage, const StageResu
       n["status"] = "ok";
       n["wall_s"] = wall_s;
       for (const auto& f : results.files) n["files"].push_back(f);
+      for (const auto& w : results.warnings) n["warnings"].push_back(w);
     }
   }
   manifest_.remove("current");

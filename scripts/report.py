@@ -704,6 +704,7 @@ SELF_CHECK = """
 
 def all_warnings(run):
     out = [("", p) for p in run.problems]
+    out += [("", w) for w in rr.config_warnings(run)]
     for s in run.stages:
         out += [(s.name, w) for w in rr.headline_warnings(s)]
     return out

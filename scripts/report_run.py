@@ -73,6 +73,7 @@ class Stage:
     config: dict = field(default_factory=dict)   # the stage's entry in config.yaml
     attrs: dict = field(default_factory=dict)    # results.h5 group attributes, as str
     tables: dict = field(default_factory=dict)   # name -> {column: (list, unit)}
+    warnings: list = field(default_factory=list)  # the driver's own, from manifest.yaml
 
 
 @dataclass
@@ -179,6 +180,7 @@ def build_stage(name, manifest, summary, config):
             stage.status = str(s.get("status", stage.status))
             stage.wall_s = as_float(s.get("wall_s")) if s.get("wall_s") is not None else stage.wall_s
             stage.files = [str(f) for f in s.get("files") or []]
+            stage.warnings = [str(w) for w in s.get("warnings") or []]
     return stage
 
 
@@ -313,8 +315,15 @@ def is_bad_number(value):
     return v is None or not math.isfinite(v)
 
 
+def config_warnings(run):
+    """What validation found legal but suspicious, file:line:col first."""
+    # Shown under a "warning" heading already: "file:line:col: key: message".
+    return [str(w).replace(": warning: ", ": ", 1) for w in run.manifest.get("config_warnings") or []]
+
+
 def headline_warnings(stage):
-    """Warnings for a finished stage: a headline that is NaN, infinite or missing."""
+    """Warnings for a finished stage: the driver's own (a modulus fitted to a
+    pull that barely started), and a headline that is NaN, infinite or missing."""
     if stage.status != "ok":
         return []
     out = []
@@ -326,7 +335,7 @@ def headline_warnings(stage):
                 out.append(f"{key} is missing" + (f" ({why})" if why else ""))
         elif is_bad_number(r.value):
             out.append(f"{key} is {r.value}")
-    return out + fit_bound_warnings(stage)
+    return stage.warnings + out + fit_bound_warnings(stage)
 
 
 def fit_parameters(stage):

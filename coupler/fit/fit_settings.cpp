@@ -202,6 +202,37 @@ void check_target_magnitudes(const config::StageCheck& c) {
   }
 }
 
+// The judge's crystal must keep each neighbour shell on one side of the
+// cutoff over the whole isotherm (check_cutoff_between_shells, at the
+// fit's start, once MD's volumes are known). Before the job only the
+// material's own lattice constant is known: a cutoff within a few per cent
+// of a shell there is likely to be crossed by the isotherm's compression
+// (copper at 10 GPa: about 2 % in length) or by thermal expansion.
+void check_cutoff_near_shell(const config::StageCheck& c) {
+  const YAML::Node material = c.materials[c.resolved["material"].Scalar()];
+  const YAML::Node potential = material ? material["potential"] : YAML::Node();
+  if (!potential.IsMap() || !potential["cutoff"] || !material["lattice_constant"]) return;
+  if (c.raw["free"] && c.raw["free"].IsMap() && c.raw["free"]["cutoff"]) return;
+  if (!c.raw["isotherm"]) return;
+  constexpr double kBelow = 0.05, kAbove = 0.02;
+  const double cutoff = potential["cutoff"].as<double>();
+  const double a = material["lattice_constant"].as<double>();
+  for (int n = 1; a * std::sqrt(n / 2.0) * (1.0 - kBelow) <= cutoff; ++n) {
+    const double shell = a * std::sqrt(n / 2.0);  // fcc: shell n at a sqrt(n/2)
+    if (cutoff > shell * (1.0 + kAbove)) continue;
+    c.validator.warn(
+        c.raw["material"], c.path + ".material",
+        fmt::format("the start potential's cutoff {:g} Å is {:+.1f} % from neighbour shell {} "
+                    "({:.3f} Å at the material's lattice constant {:g} Å): the isotherm's "
+                    "compression or thermal expansion may carry the shell across it, and the fit "
+                    "then stops at its start; a cutoff between two shells, with {:g} % room below "
+                    "and {:g} % above, is safe",
+                    cutoff, 100.0 * (cutoff / shell - 1.0), n, shell, a, 100.0 * kBelow,
+                    100.0 * kAbove));
+    return;
+  }
+}
+
 void check_group_ranks(const config::StageCheck& c) {
   const YAML::Node g = c.resolved["group_ranks"];
   const YAML::Node dpd = c.workflow["launch"] ? c.workflow["launch"]["dpd"] : YAML::Node();
@@ -217,6 +248,7 @@ void check_fit(const config::StageCheck& c) {
   check_target_temperatures(c);
   check_target_magnitudes(c);
   check_group_ranks(c);
+  check_cutoff_near_shell(c);
   const std::string material = c.resolved["material"].Scalar();
   check_free(c, c.materials[material]["potential"]);
   if (!c.raw["isotherm"] && !c.raw["elastic"]) {

@@ -194,7 +194,9 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       {"interface", OutputSpec::Shape::kTable, "", "The wave.opening planes' jump against time"},
       {"dpd_exchange", OutputSpec::Shape::kTable, "",
        "Per dpd_driver rank: messages, bytes sent and received, seconds packing and waiting, of "
-       "the nodal sums (nodal_) and of the partners and their reactions (partner_)"},
+       "the nodal sums (nodal_) and of the partners and their reactions (partner_); the "
+       "dpd_exchange figures are left out when the body holds no DPD particle, the mpm_exchange "
+       "ones when it holds no MPM point"},
       {"mpm_exchange", OutputSpec::Shape::kTable, "", "The same per mpm_driver rank"},
       {"nodal_sum_bytes_per_step", OutputSpec::Shape::kScalar, "1",
        "Bytes the DPD part sent in the nodal sums a step, all its ranks"},

@@ -16,6 +16,7 @@
 #include "dpd_stage_params.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
+#include "pbms/analysis/quasi_static_pull.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
@@ -57,11 +58,14 @@ struct TensionSeries {
   // Each grip's full speed along the axis (Å/ps, the left one's counted
   // negative) and its ramp time (ps).
   std::vector<std::pair<double, double>> grips;
-  double length = 0.0, area = 0.0;
-  std::vector<double> strain, stress, grip_stress;  // 1, GPa, GPa
+  double length = 0.0, area = 0.0, width = 0.0;
+  double density = 0.0;                                   // g/mol/Å^3 of the body's crystal
+  std::vector<double> time, strain, stress, grip_stress;  // ps, 1, GPa, GPa
 
   TensionSeries(const coupling::TensionProbe& t, const DpdPartOfBody& part)
       : probe(t), left(part.group_mask(t.left_grip)), right(part.group_mask(t.right_grip)) {
+    const double a0 = part.params().point_lattice_constant();
+    density = 4.0 * part.params().particle_mass / (a0 * a0 * a0);
     const auto a = static_cast<std::size_t>(t.axis);
     for (const auto& g : part.group_motions()) {
       if (g.mask == left) grips.emplace_back(-g.velocity[a], g.ramp_time);
@@ -70,7 +74,9 @@ struct TensionSeries {
     length = part.body_extent()[a];
     area = 1.0;
     for (std::size_t b = 0; b < 3; ++b) {
-      if (b != a) area *= part.body_extent()[b];
+      if (b == a) continue;
+      area *= part.body_extent()[b];
+      width = std::max(width, part.body_extent()[b]);
     }
   }
   // The body's mean axial stress from the DPD part's conservative virial
@@ -83,6 +89,7 @@ struct TensionSeries {
     for (const auto& [speed, ramp] : grips) separation += speed * ramp_displacement(t, ramp);
     const double e = separation / length;
     constexpr double kGPa = units::kBarPerEvPerA3 / units::kBarPerGPa;  // eV/Å^3 to GPa
+    time.push_back(t);
     strain.push_back(e);
     stress.push_back((mpm_stress_volume - dpd_virial) / (area * length * (1.0 + e)) * kGPa);
     grip_stress.push_back(0.5 * (f_right - f_left) / area * kGPa);
@@ -100,7 +107,11 @@ struct TensionSeries {
     r.add_column("tension_curve", "strain", "1", strain);
     r.add_column("tension_curve", "stress", "GPa", stress);
     r.add_column("tension_curve", "grip_stress", "GPa", grip_stress);
-    if (n >= 3) r.add_scalar("youngs_modulus", (n * sxy - sx * sy) / (n * sxx - sx * sx), "GPa");
+    if (n >= 3) {
+      r.add_scalar("youngs_modulus", (n * sxy - sx * sy) / (n * sxx - sx * sx), "GPa");
+      analysis::check_quasi_static(r, density, width,
+                                   analysis::fit_window_time(strain, time, probe.fit_strain));
+    }
     if (!stress.empty()) {
       r.add_scalar("max_stress", *std::max_element(stress.begin(), stress.end()), "GPa");
     }
@@ -347,9 +358,17 @@ void ConcurrentStage::run(StageContext& ctx) {
   }
   probes.report(r, "dpd");
   ledger.table().report(r, "dpd");
-  coupling::report_exchanges(r, ctx.comm(), "dpd", nodal, partners, cp.steps, seconds);
   sampler.report_tension(r);
-  report_bytes(r, ctx.comm(), nodal, partners, cp.steps);
+  // With no particle of its own (a body all MPM) this part only answered
+  // mpm_driver's exchanges; figures for it would describe nothing.
+  if (part.dpd_particles() > 0) {
+    coupling::report_exchanges(r, ctx.comm(), "dpd", nodal, partners, cp.steps, seconds);
+    report_bytes(r, ctx.comm(), nodal, partners, cp.steps);
+  } else {
+    r.attributes["dpd_exchange_note"] =
+        "the body holds no DPD particle: dpd_driver only answered mpm_driver's exchanges, and "
+        "its exchange figures are left out";
+  }
 }
 
 }  // namespace pbms::dpd

@@ -101,7 +101,7 @@ struct DpdRun {
 
   ThermoState sample(std::int64_t step) {
     const ThermoState thermo = probes.sample(engine, step, dt(), tension != nullptr);
-    if (tension) tension->sample(engine, thermo);
+    if (tension) tension->sample(engine, thermo, static_cast<double>(step) * dt());
     return thermo;
   }
   // Grips on a velocity ramp take each step's speed before it.
@@ -150,7 +150,7 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   const MesoparticleMaterial material = MesoparticleMaterial::from_yaml(ctx.material(p.material));
   DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
   std::optional<DpdTensionAnalysis> tension;
-  if (rp.tension) tension.emplace(*rp.tension, model, material.lattice_constant);
+  if (rp.tension) tension.emplace(*rp.tension, model, material);
   DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
                    std::move(model.particles));
   engine.set_prescribed_groups(model.prescribed_mask);

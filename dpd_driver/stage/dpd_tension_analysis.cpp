@@ -1,15 +1,21 @@
 #include "dpd_tension_analysis.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "dpd_probes.hpp"
+#include "pbms/analysis/quasi_static_pull.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::dpd {
 
 DpdTensionAnalysis::DpdTensionAnalysis(const TensionParams& params, const DpdModel& model,
-                                       double lattice_constant)
-    : params_(params), plane_(0.5 * lattice_constant) {
+                                       const MesoparticleMaterial& material)
+    : params_(params),
+      plane_(0.5 * material.lattice_constant),
+      density_(4.0 * material.mass / std::pow(material.lattice_constant, 3)) {
   if (params.test.gauge) {
     gauge_ = std::make_unique<DpdGauge>(*params.test.gauge, model.particles,
                                         model.group_mask(params.specimen), params.axis, plane_);
@@ -24,18 +30,19 @@ DpdTensionAnalysis::DpdTensionAnalysis(const TensionParams& params, const DpdMod
 void DpdTensionAnalysis::start(const DpdEngine& engine) {
   // An fcc crystal of n cells spans n a; its outermost sites, n a − a/2.
   length0_ = DpdProbes::extent(engine, specimen_, params_.axis) + plane_;
-  if (params_.area) {
-    area_ = *params_.area;
-    return;
-  }
-  area_ = 1.0;
+  double area = 1.0;
   for (int a = 0; a < 3; ++a) {
-    if (a != params_.axis) area_ *= DpdProbes::extent(engine, specimen_, a) + plane_;
+    if (a == params_.axis) continue;
+    const double side = DpdProbes::extent(engine, specimen_, a) + plane_;
+    area *= side;
+    width_ = std::max(width_, side);
   }
+  area_ = params_.area ? *params_.area : area;
 }
 
-void DpdTensionAnalysis::sample(const DpdEngine& engine, const ThermoState& thermo) {
+void DpdTensionAnalysis::sample(const DpdEngine& engine, const ThermoState& thermo, double t) {
   const int axis = params_.axis;
+  time_.push_back(t);
   const double length = DpdProbes::extent(engine, specimen_, axis) + plane_;
   strain_.push_back((length - length0_) / length0_);
   // Tension positive: σ = −W / V, eV/Å^3 to GPa.
@@ -52,6 +59,10 @@ void DpdTensionAnalysis::sample(const DpdEngine& engine, const ThermoState& ther
 
 void DpdTensionAnalysis::report(StageResults& r, const std::string& stage) const {
   params_.test.report(r, strain_, stress_, stage);
+  if (const auto fit_strain = r.scalar("fit_strain")) {
+    analysis::check_quasi_static(r, density_, width_,
+                                 analysis::fit_window_time(strain_, time_, *fit_strain));
+  }
   if (left_grip_ != 0) params_.test.report_grips(r, strain_, stress_, grip_stress_, stage);
   if (gauge_) gauge_->report(params_.test, r, stage);
   r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area_);

@@ -22,23 +22,27 @@ class DpdTensionAnalysis {
  public:
   // Before the engine takes the model's particles: the gauge's members
   // come from the full starting set.
-  DpdTensionAnalysis(const TensionParams& params, const DpdModel& model, double lattice_constant);
+  DpdTensionAnalysis(const TensionParams& params, const DpdModel& model,
+                     const MesoparticleMaterial& material);
 
   // Collective, once the engine holds the particles: the specimen's
-  // starting length and cross-section.
+  // starting length, cross-section and width.
   void start(const DpdEngine& engine);
-  // Collective: one sample, with the step's conservative virial.
-  void sample(const DpdEngine& engine, const ThermoState& thermo);
+  // Collective: one sample at time `t` (ps), with the step's conservative
+  // virial.
+  void sample(const DpdEngine& engine, const ThermoState& thermo, double t);
   // Rank 0 at the end.
   void report(StageResults& r, const std::string& stage) const;
 
  private:
   TensionParams params_;
-  double plane_;  // half the lattice constant: a (100) plane spacing
+  double plane_;    // half the lattice constant: a (100) plane spacing
+  double density_;  // g/mol/Å^3 of the fcc crystal the rod is cut from
   std::uint32_t specimen_ = 0, left_grip_ = 0, right_grip_ = 0;
   std::unique_ptr<DpdGauge> gauge_;
   double area_ = 0.0, length0_ = 0.0;
-  std::vector<double> strain_, stress_, grip_stress_;
+  double width_ = 0.0;  // the widest lateral extent, Å
+  std::vector<double> time_, strain_, stress_, grip_stress_;
 };
 
 }  // namespace pbms::dpd

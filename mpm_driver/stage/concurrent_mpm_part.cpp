@@ -206,7 +206,15 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   if (output) MpmPartOutput::list_files(r, ctx.stage());
   probes.report(r, "mpm");
   ledger.report(r, "mpm");
-  coupling::report_exchanges(r, ctx.comm(), "mpm", nodal, partners, cp.steps, seconds);
+  // With no point of its own (a body all DPD) this part only answered
+  // dpd_driver's exchanges; figures for it would describe nothing.
+  if (engine.total_points() > 0) {
+    coupling::report_exchanges(r, ctx.comm(), "mpm", nodal, partners, cp.steps, seconds);
+  } else {
+    r.attributes["mpm_exchange_note"] =
+        "the body holds no MPM point: mpm_driver only answered dpd_driver's exchanges, and its "
+        "exchange figures are left out";
+  }
 }
 
 }  // namespace pbms::mpm

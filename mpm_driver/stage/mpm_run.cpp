@@ -51,7 +51,7 @@ void MpmRunStage::run(StageContext& ctx) {
   const auto sample = [&](std::int64_t n, double t) {
     probes.sample(engine, n, t);
     if (bar) bar->sample(engine, t);
-    if (tension) tension->sample(engine);
+    if (tension) tension->sample(engine, t);
   };
   sample(0, 0.0);
   output.write(engine, 0, 0.0);

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "pbms/analysis/quasi_static_pull.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
 #include "pbms/mpi/sorted_rows.hpp"
@@ -34,6 +35,20 @@ double point_spacing(const MpmEngine& engine, std::uint32_t mask, std::size_t ax
   return std::isfinite(out) ? out : 0.0;
 }
 
+// The specimen's mass over its starting volume, over all ranks.
+double mean_density(const MpmEngine& engine, std::uint32_t mask) {
+  const grid::MaterialPoints& pts = engine.points();
+  std::array<double, 2> mine{0.0, 0.0}, all{};
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!pts.in_group(i, mask)) continue;
+    mine[0] += pts.mass[i];
+    mine[1] += pts.volume0[i];
+  }
+  mpi::check(MPI_Allreduce(mine.data(), all.data(), 2, MPI_DOUBLE, MPI_SUM, engine.comm()),
+             "MPI_Allreduce");
+  return all[1] > 0.0 ? all[0] / all[1] : 0.0;
+}
+
 }  // namespace
 
 RodTensionParams RodTensionParams::from_yaml(const YAML::Node& t) {
@@ -56,12 +71,15 @@ RodTensionAnalysis::RodTensionAnalysis(const RodTensionParams& t, const MpmEngin
   length0_ = m[axis_];
   area0_ = 1.0;
   for (std::size_t k = 0; k < 3; ++k) {
-    if (k != axis_) area0_ *= m[k];
+    if (k == axis_) continue;
+    area0_ *= m[k];
+    width0_ = std::max(width0_, m[k]);
   }
   if (!(length0_ > 0.0 && area0_ > 0.0)) {
     throw Error(
         fmt::format("stage '{}': tension.specimen '{}' holds no extended rod", stage, t.specimen));
   }
+  density_ = mean_density(engine, mask_);
   if (test_.gauge) find_gauge(engine);
 }
 
@@ -125,7 +143,8 @@ std::vector<double> RodTensionAnalysis::measure(const MpmEngine& engine) const {
   return out;
 }
 
-void RodTensionAnalysis::sample(const MpmEngine& engine) {
+void RodTensionAnalysis::sample(const MpmEngine& engine, double t) {
+  time_.push_back(t);
   const std::vector<double> m = measure(engine);
   const double length = m[axis_];
   strain_.push_back((length - length0_) / length0_);
@@ -138,6 +157,10 @@ void RodTensionAnalysis::sample(const MpmEngine& engine) {
 
 void RodTensionAnalysis::report(StageResults& r, const std::string& stage) const {
   test_.report(r, strain_, stress_, stage);
+  if (const auto fit_strain = r.scalar("fit_strain")) {
+    analysis::check_quasi_static(r, density_, width0_,
+                                 analysis::fit_window_time(strain_, time_, *fit_strain));
+  }
   if (test_.gauge) test_.report_gauge(r, gauge_strain_, gauge_stress_, stage);
   r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area0_);
 }

@@ -35,8 +35,8 @@ class RodTensionAnalysis {
   RodTensionAnalysis(const RodTensionParams& tension, const MpmEngine& engine, bool metal_units,
                      const std::string& stage);
 
-  // Collective: one sample of strain and stress.
-  void sample(const MpmEngine& engine);
+  // Collective: one sample of strain and stress at time `t`.
+  void sample(const MpmEngine& engine, double t);
   // The results of analysis::TensionTest, and the cross-section (the same on
   // every rank).
   void report(StageResults& r, const std::string& stage) const;
@@ -54,8 +54,9 @@ class RodTensionAnalysis {
   std::uint32_t mask_ = 0;
   std::size_t axis_ = 0;
   std::array<double, 3> spacing_{};
-  double length0_ = 0.0, area0_ = 0.0;
-  std::vector<double> strain_, stress_;
+  double length0_ = 0.0, area0_ = 0.0, width0_ = 0.0;
+  double density_ = 0.0;  // the specimen's mass over its starting volume
+  std::vector<double> time_, strain_, stress_;
   std::unordered_map<std::int64_t, double> gauge_start_;
   double gauge_distance0_ = 0.0;
   std::vector<double> gauge_strain_, gauge_stress_;

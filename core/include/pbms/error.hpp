@@ -30,6 +30,8 @@ struct ConfigError {
   int column = 0;  // 1-based; 0 when unknown
   std::string key_path;
   std::string message;
+  // A legal but suspicious value: printed as "warning:", it stops nothing.
+  bool warning = false;
 
   // "file:line:col: error: key.path: message" -- one line, grep-able.
   [[nodiscard]] std::string format() const;

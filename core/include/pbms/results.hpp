@@ -35,12 +35,16 @@ struct StageResults {
   std::vector<Column> columns;
   std::vector<std::string> files;                 // written by the driver, relative to the run dir
   std::map<std::string, std::string> attributes;  // free text: "lammps_version", ...
-  PBMS_FIELDS(scalars, columns, files, attributes)
+  // A result that is computed but probably meaningless (a modulus fitted to
+  // a pull that barely started): shown in the run's last lines and report.
+  std::vector<std::string> warnings;
+  PBMS_FIELDS(scalars, columns, files, attributes, warnings)
 
   void add_scalar(std::string key, double value, std::string unit,
                   double std_error = std::nan("")) {
     scalars.push_back({std::move(key), value, std::move(unit), std_error});
   }
+  void add_warning(std::string message) { warnings.push_back(std::move(message)); }
   void add_column(std::string table, std::string name, std::string unit, std::vector<double> data) {
     columns.push_back({std::move(table), std::move(name), std::move(unit), std::move(data)});
   }

@@ -150,6 +150,14 @@ void Validator::error(const YAML::Node& at, const std::string& path, const std::
   error_at(at.IsDefined() ? at.Mark() : YAML::Mark::null_mark(), path, message);
 }
 
+void Validator::warn(const YAML::Node& at, const std::string& path, const std::string& message) {
+  error(at, path, message);
+  ConfigError w = std::move(errors_.back());
+  errors_.pop_back();
+  w.warning = true;
+  warnings_.push_back(std::move(w));
+}
+
 bool Validator::check_range(const Param& p, double v, const YAML::Node& node,
                             const std::string& path) {
   const auto unit = units::canonical_symbol(p.dimension);

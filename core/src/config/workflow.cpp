@@ -157,7 +157,11 @@ class WorkflowLoader {
     if (v_.errors().empty() && file_errors_.empty()) run_stage_checks();
     result.errors = v_.errors();
     result.errors.insert(result.errors.end(), file_errors_.begin(), file_errors_.end());
-    if (result.errors.empty()) result.workflow = workflow();
+    result.warnings = v_.warnings();
+    if (result.errors.empty()) {
+      result.workflow = workflow();
+      for (const auto& w : result.warnings) result.workflow->warnings.push_back(w.format());
+    }
     return result;
   }
 
@@ -397,8 +401,8 @@ class WorkflowLoader {
     for (size_t i = 0; i < stage_specs_.size(); ++i) {
       if (!stage_specs_[i] || !stage_specs_[i]->check) continue;
       const std::string sp = fmt::format("stages[{}]", i);
-      stage_specs_[i]->check(
-          {v_, stages_[i], resolved_["stages"][i], sp, resolved_["materials"], drivers_, resolved_});
+      stage_specs_[i]->check({v_, stages_[i], resolved_["stages"][i], sp, resolved_["materials"],
+                              drivers_, resolved_});
     }
   }
 

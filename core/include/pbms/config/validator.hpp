@@ -45,8 +45,11 @@ class Validator {
 
   void error(const YAML::Node& at, const std::string& path, const std::string& message);
   void error_at(const YAML::Mark& mark, const std::string& path, const std::string& message);
+  // A legal value that is probably a mistake: reported, stops nothing.
+  void warn(const YAML::Node& at, const std::string& path, const std::string& message);
 
   [[nodiscard]] const std::vector<ConfigError>& errors() const { return errors_; }
+  [[nodiscard]] const std::vector<ConfigError>& warnings() const { return warnings_; }
   [[nodiscard]] const std::vector<Reference>& references() const { return references_; }
   [[nodiscard]] const std::string& file() const { return file_; }
 
@@ -79,6 +82,7 @@ class Validator {
 
   std::string file_;
   std::vector<ConfigError> errors_;
+  std::vector<ConfigError> warnings_;
   std::vector<Reference> references_;
 };
 

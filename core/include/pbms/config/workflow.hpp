@@ -37,6 +37,8 @@ struct Workflow {
   YAML::Node materials;
   std::vector<StageConfig> stages;
   YAML::Node resolved;  // the whole resolved config, written into each run dir
+  // Legal but suspicious values, each formatted "file:line:col: warning: ...".
+  std::vector<std::string> warnings;
 
   [[nodiscard]] std::filesystem::path run_dir() const;
   // Drivers the stages need, in order of first use.
@@ -46,6 +48,7 @@ struct Workflow {
 struct LoadResult {
   std::optional<Workflow> workflow;
   std::vector<ConfigError> errors;
+  std::vector<ConfigError> warnings;  // reported whether or not there are errors
 };
 
 // `drivers` are the stage kinds the installed drivers declare.

@@ -14,7 +14,7 @@
 namespace pbms::protocol {
 
 inline constexpr uint32_t kMagic = 0x534d4250;  // "PBMS"
-inline constexpr uint16_t kProtocolVersion = 2;
+inline constexpr uint16_t kProtocolVersion = 3;
 
 enum class MessageType : uint16_t {
   kHello = 1,        // driver -> coupler: who I am, what I can run
