@@ -27,6 +27,7 @@ class Part:
         self.path, self.label, self.colour = path, label, colour
         self.frames = {}
         self.first = None
+        self.keep = None  # the members of the drawn slice, from the first frame
         with h5py.File(path, "r") as f:
             pos = f["particles/all/position"]
             self.steps = np.asarray(pos["step"][()], dtype=np.int64)
@@ -97,6 +98,23 @@ def view_axes(parts, config):
     return h, v, d, extent
 
 
+SLICE_HALF_WIDTH = 4.0  # Å: two (100) planes of the copper mesoparticle lattice (a/2 = 3.6 Å)
+
+
+def choose_slice(parts, d):
+    """Keeps, in each part, the members whose first position lies within
+    SLICE_HALF_WIDTH of the bodies' middle along the depth axis `d`: a side
+    view of everything would show only the outside, and hide a core inside
+    a shell. Returns the middle."""
+    firsts = [p.first[np.isfinite(p.first[:, d]), d] for p in parts if p.first is not None]
+    depth = np.concatenate(firsts) if firsts else np.zeros(1)
+    mid = 0.5 * (float(depth.min()) + float(depth.max())) if depth.size else 0.0
+    for p in parts:
+        if p.first is not None:
+            p.keep = np.abs(p.first[:, d] - mid) <= SLICE_HALF_WIDTH
+    return mid
+
+
 def displacement(part, pos, axis):
     """Displacement along `axis` since the first frame, across a periodic box."""
     u = pos[:, axis] - part.first[:, axis]
@@ -147,9 +165,11 @@ def draw_row(axs, row, axes3, scales, norms):
         pos, vel = part.frames[idx]
         ok = np.all(np.isfinite(pos), axis=1)
         lost += int(np.count_nonzero(~ok))
+        if part.keep is not None and len(part.keep) == len(ok):
+            ok &= part.keep
         order = np.argsort(-pos[ok, d])  # the front (smallest depth) drawn last
         x, y = pos[ok, h][order], pos[ok, v][order]
-        kw = dict(s=4, linewidths=0, rasterized=True)
+        kw = dict(s=float(np.clip(12000.0 / max(1, len(x)), 4, 20)), linewidths=0, rasterized=True)
         axs[0].scatter(x, y, color=part.colour, **kw)
         if vel is not None:
             sp = np.linalg.norm(vel[ok], axis=1)[order] * scales[0]
@@ -208,6 +228,9 @@ def render_body(stage_dir, out_png, title, config):
     for p in parts:
         p.load(sorted({idx for _, _, m in rows for q, idx in m if q is p}))
     h, v, d, extent = view_axes(parts, config)
+    mid = choose_slice(parts, d)
+    title = (f"{title}\nslice {2 * SLICE_HALF_WIDTH:g} Å thick through the middle, "
+             f"{AXES[d]} = {mid:.4g} Å")
     scale, unit = speed_scale(parts[0].unit)
     norms = colour_norms(rows, h, scale)
     import matplotlib
