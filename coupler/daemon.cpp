@@ -1,5 +1,7 @@
 #include "daemon.hpp"
 
+#include "earlier_run.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +16,7 @@
 
 #include "capabilities.hpp"
 #include "driver_catalog.hpp"
+#include "earlier_run.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/mpmd.hpp"
 #include "pbms/progress_meter.hpp"
@@ -111,6 +114,7 @@ class Daemon {
     for (const auto& l : scheduler_.links()) {
       layout.push_back({l.hello.program, l.app.size, l.app.first_world_rank});
     }
+    if (opt_.resume) earlier_ = EarlierRun::read(std::filesystem::absolute(wf_.run_dir()));
     record_ = std::make_unique<RunRecord>(wf_, layout, opt_.command_line, existing(), opt_.run_id);
     for (const auto& l : scheduler_.links()) record_->set_software(l.hello.software);
     setup_log();
@@ -124,6 +128,13 @@ class Daemon {
                       l.app.size == 1 ? "" : "s", fmt::join(l.hello.capabilities, ", ")));
     }
     for (size_t i = 0; i < wf_.stages.size(); ++i) {
+      const auto& name = wf_.stages[i].name;
+      if (earlier_ && earlier_->finished(name)) {
+        done_[name] = earlier_->results_of(name);
+        log(fmt::format("stage {}/{} '{}' finished in the run this one resumes: kept", i + 1,
+                        wf_.stages.size(), name));
+        continue;
+      }
       try {
         run_stage(i);
       } catch (const std::exception& e) {
@@ -138,6 +149,11 @@ class Daemon {
   }
 
  private:
+  [[nodiscard]] int keep_checkpoints() const {
+    const YAML::Node c = wf_.resolved["checkpoint"];
+    return c && c["keep"] ? c["keep"].as<int>() : 2;
+  }
+
   [[nodiscard]] ExistingRun existing() const {
     if (opt_.resume) return ExistingRun::kResume;
     return opt_.overwrite ? ExistingRun::kOverwrite : ExistingRun::kRefuse;
@@ -198,7 +214,14 @@ class Daemon {
     rs.materials_yaml = yaml_text(resolve_materials(wf_.materials, done_));
     rs.run_dir = record_->dir().string();
     rs.seed = wf_.seed;
+    if (wf_.resolved["checkpoint"]) rs.checkpoint_yaml = yaml_text(wf_.resolved["checkpoint"]);
+    // A stage the resumed run was running goes on from its newest complete
+    // checkpoint (the manifest lists only complete ones).
+    if (opt_.resume) rs.resume_from = record_->newest_checkpoint(stage.name);
     record_->stage_started(stage);
+    if (!rs.resume_from.empty()) {
+      log(fmt::format("stage '{}' goes on from its checkpoint {}", stage.name, rs.resume_from));
+    }
     log(fmt::format("stage {}/{} '{}' ({}) on {}", index + 1, wf_.stages.size(), stage.name,
                     stage.kind, stage.program));
     const std::optional<std::string> identity = cache_identity_of(stage, rs);
@@ -225,7 +248,12 @@ class Daemon {
     // Any failed part ends the run: the other parts would wait for it.
     auto on_answer = [&](const Answer& a) {
       if (const auto* p = std::get_if<protocol::Progress>(&a)) {
-        if (p->request == request) progress.show(p->step, p->total_steps, p->sim_time_ps, p->phase);
+        if (!p->checkpoint.empty()) {
+          record_->checkpoint_written(stage.name, p->step, p->checkpoint, keep_checkpoints());
+          if (file_log_) file_log_->info("  checkpoint after step {}: {}", p->step, p->checkpoint);
+        } else if (p->request == request) {
+          progress.show(p->step, p->total_steps, p->sim_time_ps, p->phase);
+        }
       } else if (const auto* f = std::get_if<protocol::StageFailed>(&a)) {
         fail(f->program, f->rank, f->stage, f->step, f->reason);
       } else if (const auto* d = std::get_if<protocol::StageDone>(&a)) {
@@ -355,6 +383,7 @@ class Daemon {
   std::unique_ptr<RunRecord> record_;
   std::shared_ptr<spdlog::logger> file_log_;
   std::map<std::string, StageResults> done_;
+  std::optional<EarlierRun> earlier_;  // with --resume: the run this one continues
 };
 
 }  // namespace

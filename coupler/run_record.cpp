@@ -5,11 +5,13 @@
 #include <chrono>
 #include <ctime>
 #include <map>
+#include <optional>
 
 #include <H5public.h>
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "earlier_run.hpp"
 #include "pbms/io/hdf5.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/protocol/messages.hpp"
@@ -47,7 +49,35 @@ std::string now_iso8601() {
   return buf;
 }
 
+namespace {
+
+// A resumed run must be the run it continues: its finished stages and its
+// checkpoints hold the results of that config, not of this one.
+std::string resume_refusal(const config::Workflow& wf) {
+  const auto dir = std::filesystem::absolute(wf.run_dir()).lexically_normal();
+  const auto earlier = EarlierRun::read(dir);
+  if (!earlier) return {};
+  const std::string diff = first_difference(earlier->config(), wf.resolved);
+  if (diff.empty()) return {};
+  ConfigError e;
+  e.file = wf.source_file;
+  e.line = wf.run_name_line;
+  e.column = wf.run_name_column;
+  e.key_path = "run.name";
+  e.message = fmt::format(
+      "--resume continues the run in '{}', but the config has changed since: {}. Its finished "
+      "stages and checkpoints belong to the config it ran",
+      dir.string(), diff);
+  std::string out = e.format();
+  out += fmt::format("\n  to start it afresh:  ./pbms run {} --overwrite", wf.source_file);
+  out += fmt::format("\n  to keep both:        give this run a new run.name in {}", wf.source_file);
+  return out;
+}
+
+}  // namespace
+
 std::string existing_run_refusal(const config::Workflow& wf, ExistingRun existing) {
+  if (existing == ExistingRun::kResume) return resume_refusal(wf);
   if (existing != ExistingRun::kRefuse) return {};
   const auto dir = std::filesystem::absolute(wf.run_dir()).lexically_normal();
   std::error_code ec;
@@ -95,6 +125,8 @@ RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout
   if (!created && existing == ExistingRun::kRefuse && !std::filesystem::is_empty(dir_)) {
     throw Error(existing_run_refusal(wf, existing));
   }
+  std::optional<EarlierRun> earlier;
+  if (existing == ExistingRun::kResume) earlier = EarlierRun::read(dir_);
   write_yaml_atomic(dir_ / "config.yaml", wf.resolved,
                     fmt::format("resolved from {}: defaults filled in, quantities in metal units",
                                 wf.source_file));
@@ -133,11 +165,27 @@ RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout
     n["kind"] = s.kind;
     n["program"] = s.program;
     n["status"] = "pending";
+    // A stage the earlier run finished keeps its record; one it was
+    // running keeps its checkpoints, to restart from.
+    if (earlier && earlier->finished(s.name)) n = YAML::Clone(earlier->stage_entry(s.name));
+    if (earlier && !earlier->finished(s.name) && earlier->stage_entry(s.name)["checkpoints"]) {
+      n["checkpoints"] = YAML::Clone(earlier->stage_entry(s.name)["checkpoints"]);
+    }
     manifest_["stages"].push_back(n);
   }
   for (const auto& w : wf.warnings) manifest_["config_warnings"].push_back(w);
+  if (earlier) {
+    for (const auto& r : earlier->manifest()["resumed"]) manifest_["resumed"].push_back(r);
+    manifest_["resumed"].push_back(now_iso8601());
+    if (earlier->manifest()["started"]) manifest_["started"] = earlier->manifest()["started"];
+  }
   summary_["run"] = wf.run_name;
   summary_["stages"] = YAML::Node(YAML::NodeType::Map);
+  for (const auto& s : wf.stages) {
+    if (earlier && earlier->finished(s.name)) {
+      summary_["stages"][s.name] = YAML::Clone(earlier->summary()["stages"][s.name]);
+    }
+  }
   write_manifest();
   write_summary();
 }
@@ -188,6 +236,12 @@ void RunRecord::stage_finished(const config::StageConfig& stage, const StageResu
   write_summary();
   for (auto n : manifest_["stages"]) {
     if (n["name"].as<std::string>() == stage.name) {
+      // A finished stage is not resumed: its checkpoints are done with.
+      for (const auto& c : n["checkpoints"]) {
+        std::error_code ec;
+        std::filesystem::remove(dir_ / c["file"].as<std::string>(), ec);
+      }
+      n.remove("checkpoints");
       n["status"] = "ok";
       n["wall_s"] = wall_s;
       for (const auto& f : results.files) n["files"].push_back(f);
@@ -208,6 +262,44 @@ void RunRecord::stage_failed(const std::string& stage, const std::string& kind) 
   for (auto n : manifest_["stages"]) {
     if (n["name"].as<std::string>() == stage) n["status"] = "failed";
   }
+}
+
+void RunRecord::checkpoint_written(const std::string& stage, int64_t step, const std::string& file,
+                                   int keep) {
+  for (auto n : manifest_["stages"]) {
+    if (n["name"].as<std::string>() != stage) continue;
+    YAML::Node c;
+    c["step"] = step;
+    c["file"] = file;
+    n["checkpoints"].push_back(c);
+    // Listed first, deleted after: a crash between the two leaves an extra
+    // file, never a listed one that is gone.
+    write_manifest();
+    YAML::Node kept(YAML::NodeType::Sequence);
+    const auto count = static_cast<int>(n["checkpoints"].size());
+    for (int k = 0; k < count; ++k) {
+      const YAML::Node old = n["checkpoints"][k];
+      if (k < count - keep) {
+        std::error_code ec;
+        std::filesystem::remove(dir_ / old["file"].as<std::string>(), ec);
+      } else {
+        kept.push_back(old);
+      }
+    }
+    n["checkpoints"] = kept;
+  }
+  write_manifest();
+}
+
+std::string RunRecord::newest_checkpoint(const std::string& stage) const {
+  for (const auto& n : manifest_["stages"]) {
+    if (n["name"].as<std::string>() != stage || !n["checkpoints"] || n["checkpoints"].size() == 0) {
+      continue;
+    }
+    const YAML::Node last = n["checkpoints"][n["checkpoints"].size() - 1];
+    return (dir_ / last["file"].as<std::string>()).string();
+  }
+  return {};
 }
 
 void RunRecord::failed(const std::string& program, int rank, const std::string& stage, int64_t step,

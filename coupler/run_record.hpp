@@ -55,6 +55,13 @@ class RunRecord {
   void progress(const std::string& stage, int64_t step, int64_t total, double sim_time_ps);
   void stage_finished(const config::StageConfig& stage, const StageResults& results, double wall_s);
   void stage_failed(const std::string& stage, const std::string& kind);
+  // A complete checkpoint of `stage` after `step`: listed under the stage
+  // in the manifest; then all but the newest `keep` are deleted.
+  void checkpoint_written(const std::string& stage, int64_t step, const std::string& file,
+                          int keep);
+  // The newest complete checkpoint of `stage` the manifest lists (an
+  // absolute path), or empty.
+  [[nodiscard]] std::string newest_checkpoint(const std::string& stage) const;
   void failed(const std::string& program, int rank, const std::string& stage, int64_t step,
               const std::string& message);
   void finished();

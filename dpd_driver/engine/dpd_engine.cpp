@@ -11,6 +11,7 @@
 #include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::dpd {
@@ -52,6 +53,55 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
   }
   rebuild();
   compute_forces(Tally::kForcesOnly);
+}
+
+std::vector<double> DpdEngine::gather_state() const {
+  std::vector<double> mine;
+  mine.reserve(owned_ * kStateWidth);
+  const DpdParticles& p = particles_;
+  for (std::size_t i = 0; i < owned_; ++i) {
+    mine.insert(mine.end(), {static_cast<double>(p.id[i]), static_cast<double>(p.type[i]),
+                             static_cast<double>(p.group_mask[i])});
+    for (int a = 0; a < 3; ++a) mine.push_back(p.x[i][a]);
+    for (int a = 0; a < 3; ++a) mine.push_back(static_cast<double>(p.image[i][a]));
+    for (int a = 0; a < 3; ++a) mine.push_back(p.v[i][a]);
+    for (int a = 0; a < 3; ++a) mine.push_back(p.f[i][a]);
+    mine.push_back(p.internal_energy[i]);
+  }
+  return mpi::sorted_rows(comm(), mine, kStateWidth, mpi::RowsTo::kEveryRank);
+}
+
+void DpdEngine::restore_state(const std::vector<double>& rows, std::int64_t step) {
+  if (rows.size() % kStateWidth != 0 ||
+      static_cast<std::int64_t>(rows.size() / kStateWidth) != total_) {
+    throw Error(fmt::format("DPD engine: the checkpoint holds {} particles, this run {}",
+                            rows.size() / kStateWidth, total_));
+  }
+  DpdParticles all;
+  for (std::size_t k = 0; k < rows.size(); k += kStateWidth) {
+    const double* r = &rows[k];
+    all.add(static_cast<std::int64_t>(r[0]), static_cast<int>(r[1]), {r[3], r[4], r[5]},
+            {r[9], r[10], r[11]});
+    all.group_mask.back() = static_cast<std::uint32_t>(r[2]);
+    all.image.back() = {static_cast<int>(r[6]), static_cast<int>(r[7]), static_cast<int>(r[8])};
+    all.f.back() = {r[12], r[13], r[14]};
+    all.internal_energy.back() = r[15];
+  }
+  // Between list builds positions drift past periodic faces: wrapped, each
+  // has exactly one owner.
+  wrap_periodic_axes(all, domain_.box(), all.size());
+  particles_.truncate(0);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (!domain_.owns(all.x[i])) continue;
+    particles_.add(all.id[i], all.type[i], all.x[i], all.v[i]);
+    particles_.group_mask.back() = all.group_mask[i];
+    particles_.image.back() = all.image[i];
+    particles_.f.back() = all.f[i];
+    particles_.internal_energy.back() = all.internal_energy[i];
+  }
+  owned_ = particles_.size();
+  step_ = step;
+  rebuild();
 }
 
 void DpdEngine::set_prescribed_groups(std::uint32_t mask) {

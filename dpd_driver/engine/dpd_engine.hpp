@@ -124,6 +124,19 @@ class DpdEngine {
   // Scales the free particles' velocities towards T over tau (Berendsen).
   void berendsen(double temperature, double tau);
 
+  // What a checkpoint holds of the engine: every rank's owned particles as
+  // rows of kStateWidth (id, type, groups, x, image, v, f, internal
+  // energy), sorted by id, on every rank. Collective.
+  static constexpr std::size_t kStateWidth = 16;
+  [[nodiscard]] std::vector<double> gather_state() const;
+  // Takes `rows` (gather_state's, the same on every rank, from this run or
+  // a checkpoint) as the particles after `step`: each rank keeps the ones
+  // its sub-box owns, in id order, then ghosts and list anew. The forces
+  // are the rows', not recomputed: the next half kick is the one the
+  // checkpointed run made. A run that writes a checkpoint takes its own
+  // rows back the same way, so that it goes on exactly as a resumed one.
+  void restore_state(const std::vector<double>& rows, std::int64_t step);
+
   // All-rank sums; with_potential costs one extra pair pass. The potential
   // counts each pair with a partner in full.
   [[nodiscard]] ThermoState thermo(bool with_potential);

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "dpd_model.hpp"
 #include "dpd_part_of_body.hpp"
 #include "dpd_run.hpp"
 #include "dpd_stage_params.hpp"
@@ -293,6 +294,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   if (inter == MPI_COMM_NULL) {
     throw Error(fmt::format("stage '{}': mpm_driver is not running", ctx.stage()));
   }
+  use_run_directory(ctx.run_dir());
   DpdPartOfBody part(ctx.comm(), ctx.params(), ctx.material(), ctx.seed(), ctx.stage());
   const coupling::ConcurrentParams& cp = part.params();
   coupling::hand_over(inter, ctx.comm(), part.handover());

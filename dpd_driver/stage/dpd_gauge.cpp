@@ -47,4 +47,16 @@ void DpdGauge::report(const analysis::TensionTest& test, StageResults& r,
   test.report_gauge(r, strain_, stress_, stage);
 }
 
+void DpdGauge::save(CheckpointArchive& a) const {
+  a.put("gauge/distance0", distance0_);
+  a.put("gauge/strain", strain_);
+  a.put("gauge/stress", stress_);
+}
+
+void DpdGauge::load(const CheckpointArchive& a) {
+  distance0_ = a.scalar("gauge/distance0");
+  strain_ = a.get("gauge/strain");
+  stress_ = a.get("gauge/stress");
+}
+
 }  // namespace pbms::dpd

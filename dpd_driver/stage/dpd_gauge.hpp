@@ -12,6 +12,7 @@
 
 #include "engine/dpd_engine.hpp"
 #include "pbms/analysis/tension_test.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::dpd {
@@ -29,6 +30,8 @@ class DpdGauge {
   // forces of the last step.
   void sample(const DpdEngine& engine);
   void report(const analysis::TensionTest& test, StageResults& r, const std::string& stage) const;
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   analysis::GaugeSection gauge_;

@@ -74,4 +74,21 @@ void DpdImpactAnalysis::report(StageResults& r) const {
   if (!params_.mid_amplitude) r.add_scalar("wave_speed", first_motion_speed, "m/s");
 }
 
+void DpdImpactAnalysis::save(CheckpointArchive& a) const {
+  a.put("impact/start",
+        std::vector<double>{near0_[0], near0_[1], near0_[2], far0_[0], far0_[1], far0_[2]});
+  a.put("impact/time", time_);
+  a.put("impact/near", near_);
+  a.put("impact/far", far_);
+}
+
+void DpdImpactAnalysis::load(const CheckpointArchive& a) {
+  const auto& s = a.get("impact/start");
+  near0_ = {s.at(0), s.at(1), s.at(2)};
+  far0_ = {s.at(3), s.at(4), s.at(5)};
+  time_ = a.get("impact/time");
+  near_ = a.get("impact/near");
+  far_ = a.get("impact/far");
+}
+
 }  // namespace pbms::dpd

@@ -9,6 +9,7 @@
 #include "dpd_model.hpp"
 #include "dpd_run_params.hpp"
 #include "engine/dpd_engine.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::dpd {
@@ -24,6 +25,9 @@ class DpdImpactAnalysis {
   // the wave did not reach both slabs, the histories, and why there is no
   // speed.
   void report(StageResults& r) const;
+  // The slabs' histories, for a checkpoint; and back.
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   ImpactParams params_;

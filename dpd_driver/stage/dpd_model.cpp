@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -10,6 +11,7 @@
 #include "kernels/pair_style_registry.hpp"
 #include "pbms/error.hpp"
 #include "pbms/geometry/lattice_fill.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/io/h5md_reader.hpp"
 #include "pbms/io/lammps_data_reader.hpp"
 #include "pbms/units.hpp"
@@ -22,6 +24,39 @@ namespace {
 std::map<std::string, DpdParticles>& final_states() {
   static std::map<std::string, DpdParticles> states;
   return states;
+}
+
+std::filesystem::path& run_directory() {
+  static std::filesystem::path dir;
+  return dir;
+}
+
+std::filesystem::path final_state_file(const std::string& stage) {
+  return run_directory() / stage / "final_state.h5";
+}
+
+std::string final_state_identity(const std::string& stage) {
+  return fmt::format("the final state of stage '{}'", stage);
+}
+
+// id, type, x, v, internal energy.
+constexpr std::size_t kFinalStateWidth = 9;
+
+// A stage finished by the run a resumed one continues left its final state
+// on disk only.
+std::optional<DpdParticles> final_state_from_disk(const std::string& stage) {
+  const auto file = final_state_file(stage);
+  if (run_directory().empty() || !std::filesystem::exists(file)) return std::nullopt;
+  const CheckpointArchive a =
+      CheckpointArchive::read(file, final_state_identity(stage), MPI_COMM_SELF);
+  const std::vector<double>& rows = a.get("particles");
+  DpdParticles p;
+  for (std::size_t r = 0; r + kFinalStateWidth <= rows.size(); r += kFinalStateWidth) {
+    p.add(static_cast<std::int64_t>(rows[r]), static_cast<int>(rows[r + 1]),
+          {rows[r + 2], rows[r + 3], rows[r + 4]}, {rows[r + 5], rows[r + 6], rows[r + 7]});
+    p.internal_energy.back() = rows[r + 8];
+  }
+  return p;
 }
 
 DpdParticles from_snapshot(const ParticleSnapshot& s, double mass) {
@@ -61,7 +96,23 @@ std::unique_ptr<PairStyle> pair_style_from_yaml(const YAML::Node& potential) {
   return PairStyleRegistry::create(style, params);
 }
 
-void keep_final_state(const std::string& stage, DpdParticles all) {
+void use_run_directory(const std::filesystem::path& dir) {
+  run_directory() = dir;
+}
+
+void keep_final_state(const std::string& stage, DpdParticles all, bool write) {
+  if (write && !run_directory().empty()) {
+    std::vector<double> rows;
+    rows.reserve(all.size() * kFinalStateWidth);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      rows.insert(rows.end(), {static_cast<double>(all.id[i]), static_cast<double>(all.type[i]),
+                               all.x[i][0], all.x[i][1], all.x[i][2], all.v[i][0], all.v[i][1],
+                               all.v[i][2], all.internal_energy[i]});
+    }
+    CheckpointArchive a;
+    a.put("particles", std::move(rows));
+    a.write(final_state_file(stage), final_state_identity(stage));
+  }
   final_states()[stage] = std::move(all);
 }
 
@@ -74,7 +125,12 @@ DpdParticles initial_particles(const DpdStageParams& p, double mass, const std::
   if (!p.initial) return particles;
   const DpdStageParams::Initial& initial = *p.initial;
   if (!initial.from_stage.empty()) {
-    const auto it = final_states().find(initial.from_stage);
+    auto it = final_states().find(initial.from_stage);
+    if (it == final_states().end()) {
+      if (auto kept = final_state_from_disk(initial.from_stage)) {
+        it = final_states().emplace(initial.from_stage, std::move(*kept)).first;
+      }
+    }
     if (it == final_states().end()) {
       throw Error(fmt::format(
           "stage '{}': initial.from_stage '{}' is not an earlier dpd_run or dpd_equilibrate "

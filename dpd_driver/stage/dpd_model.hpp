@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,7 +57,12 @@ struct RampedVelocity {
 
 // The final state of a stage, kept in the driver process for a later
 // stage's `initial: {from_stage: ...}`. Every rank holds the full set.
-void keep_final_state(const std::string& stage, DpdParticles all);
+// Keeps a stage's final state for a later stage's `initial: {from_stage}`;
+// with `write` (one rank) also in <run_dir>/<stage>/final_state.h5, where a
+// resumed run finds the states of the stages it did not run again.
+void keep_final_state(const std::string& stage, DpdParticles all, bool write);
+// The run directory of the stage running now: where final states go.
+void use_run_directory(const std::filesystem::path& dir);
 
 // The run seed mixed with the stage name (FNV-1a): each stage's noise
 // stream differs from every other's of the same run, on every machine.

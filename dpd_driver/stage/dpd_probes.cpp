@@ -145,4 +145,20 @@ std::vector<double> DpdProbes::sample(DpdEngine& engine, ThermoState& thermo) {
   return out;
 }
 
+std::vector<double> DpdProbes::references() const {
+  std::vector<double> out;
+  for (const auto& p : probes_) {
+    out.insert(out.end(),
+               {p.has_reference ? 1.0 : 0.0, p.reference[0], p.reference[1], p.reference[2]});
+  }
+  return out;
+}
+
+void DpdProbes::set_references(const std::vector<double>& values) {
+  for (std::size_t k = 0; k < probes_.size() && 4 * k + 3 < values.size(); ++k) {
+    probes_[k].has_reference = values[4 * k] != 0.0;
+    probes_[k].reference = {values[4 * k + 1], values[4 * k + 2], values[4 * k + 3]};
+  }
+}
+
 }  // namespace pbms::dpd

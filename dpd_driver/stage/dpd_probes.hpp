@@ -24,6 +24,11 @@ class DpdProbes {
   // Collective: samples every probe (all ranks call it).
   [[nodiscard]] std::vector<double> sample(DpdEngine& engine, ThermoState& thermo);
 
+  // The slabs' reference centres of mass (set at the first sample), four
+  // numbers a probe, for a checkpoint; and back.
+  [[nodiscard]] std::vector<double> references() const;
+  void set_references(const std::vector<double>& values);
+
   // Centre of mass (unwrapped) of a group, all ranks; used by analyses too.
   [[nodiscard]] static Vec3 centre_of_mass(const DpdEngine& engine, std::uint32_t mask);
   // Largest minus smallest coordinate of a group along an axis.

@@ -16,6 +16,7 @@
 #include "dpd_trajectory.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
+#include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 
 namespace pbms::dpd {
@@ -72,6 +73,24 @@ class DpdProbeSeries {
                    "K");
     }
   }
+  void save(CheckpointArchive& a) const {
+    a.put("probes/step", step_);
+    a.put("probes/time", time_);
+    a.put("probes/temperatures", temperatures_);
+    a.put("probes/references", probes_.references());
+    for (std::size_t c = 0; c < samples_.size(); ++c) {
+      a.put(fmt::format("probes/column_{}", c), samples_[c]);
+    }
+  }
+  void load(const CheckpointArchive& a) {
+    step_ = a.get("probes/step");
+    time_ = a.get("probes/time");
+    temperatures_ = a.get("probes/temperatures");
+    probes_.set_references(a.get("probes/references"));
+    for (std::size_t c = 0; c < samples_.size(); ++c) {
+      samples_[c] = a.get(fmt::format("probes/column_{}", c));
+    }
+  }
   void report_table(StageResults& r) const {
     r.add_column("probes", "step", "1", step_);
     r.add_column("probes", "time", "ps", time_);
@@ -114,6 +133,33 @@ struct DpdRun {
       }
     }
   }
+  // Everything the run needs to go on after `step`, with the energies
+  // energy_drift is measured from.
+  CheckpointArchive save(const ThermoState& initial) const {
+    CheckpointArchive a;
+    a.put("engine/particles", engine.gather_state());
+    a.put("engine/step", static_cast<double>(engine.step_count()));
+    a.put("run/initial_energies",
+          std::vector<double>{initial.kinetic, initial.potential, initial.internal});
+    probes.save(a);
+    if (impact) impact->save(a);
+    if (tension) tension->save(a);
+    return a;
+  }
+  // The state `save` wrote; returns the step it was written after and sets
+  // `initial`.
+  std::int64_t load(const CheckpointArchive& a, ThermoState& initial) {
+    const auto step = static_cast<std::int64_t>(a.scalar("engine/step"));
+    engine.restore_state(a.get("engine/particles"), step);
+    const auto& e = a.get("run/initial_energies");
+    initial.kinetic = e.at(0);
+    initial.potential = e.at(1);
+    initial.internal = e.at(2);
+    probes.load(a);
+    if (impact) impact->load(a);
+    if (tension) tension->load(a);
+    return step;
+  }
   void step(std::int64_t n) {
     set_current_step(n);
     ramp_grips(n);
@@ -129,7 +175,7 @@ struct DpdRun {
 
 void report_run(StageResults& r, const DpdEngine& engine, const DpdProbeSeries& probes,
                 const ThermoState& initial, const ThermoState& last, std::int64_t steps,
-                double seconds) {
+                double seconds, std::int64_t steps_timed) {
   r.add_scalar("steps", static_cast<double>(steps), "1");
   r.add_scalar("particles", static_cast<double>(engine.total_particles()), "1");
   r.add_scalar("temperature", last.temperature, "K");
@@ -139,14 +185,15 @@ void report_run(StageResults& r, const DpdEngine& engine, const DpdProbeSeries& 
   r.add_scalar("energy_drift",
                (last.total() - initial.total()) / std::max(std::abs(initial.total()), 1e-300), "1");
   r.add_scalar("pressure", (last.pressure[0] + last.pressure[1] + last.pressure[2]) / 3.0, "bar");
-  if (steps > 0 && seconds > 0.0) {
-    r.add_scalar("steps_per_second", static_cast<double>(steps) / seconds, "1/s");
+  if (steps_timed > 0 && seconds > 0.0) {
+    r.add_scalar("steps_per_second", static_cast<double>(steps_timed) / seconds, "1/s");
   }
   probes.report_table(r);
 }
 
 void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   const DpdStageParams& p = rp.stage;
+  use_run_directory(ctx.run_dir());
   const MesoparticleMaterial material = MesoparticleMaterial::from_yaml(ctx.material(p.material));
   DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
   std::optional<DpdTensionAnalysis> tension;
@@ -179,16 +226,38 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
              impact ? &*impact : nullptr,
              tension ? &*tension : nullptr};
 
-  const ThermoState first = run.sample(0);
-  const ThermoState initial = first.potential != 0.0 ? first : engine.thermo(true);
-  if (impact) impact->track(engine, 0, run.dt());
-  if (p.particles_every > 0 || p.steps == 0) trajectory.write_frame(engine, 0, run.dt());
+  // Checkpoints hold no trajectory yet: a run writing frames along the
+  // way, or one on a grid, writes none.
+  StageCheckpoints checkpoints(ctx);
+  const bool checkpointed = checkpoints.enabled() && !grid_step && p.particles_every == 0;
+  if (checkpoints.enabled() && !checkpointed) {
+    ctx.results().add_warning(
+        "no checkpoints written: checkpoints of a dpd_run do not yet hold a grid model's state or "
+        "H5MD frames written along the way (particles_every > 0); a resumed run starts this "
+        "stage again");
+  }
+  ThermoState initial;
+  std::int64_t first_step = 1;
+  if (checkpointed && checkpoints.resuming()) {
+    first_step = run.load(checkpoints.resume_archive(), initial) + 1;
+  } else {
+    const ThermoState first = run.sample(0);
+    initial = first.potential != 0.0 ? first : engine.thermo(true);
+    if (impact) impact->track(engine, 0, run.dt());
+    if (p.particles_every > 0 || p.steps == 0) trajectory.write_frame(engine, 0, run.dt());
+  }
   const auto started = std::chrono::steady_clock::now();
-  for (std::int64_t n = 1; n <= p.steps; ++n) {
+  for (std::int64_t n = first_step; n <= p.steps; ++n) {
     run.step(n);
     if (n % p.sample_every == 0 || n == p.steps) run.sample(n);
     if ((p.particles_every > 0 && n % p.particles_every == 0) || n == p.steps) {
       trajectory.write_frame(engine, n, run.dt());
+    }
+    if (checkpointed && checkpoints.due(n, p.steps)) {
+      const CheckpointArchive a = run.save(initial);
+      checkpoints.write(n, static_cast<double>(n) * run.dt(), a);
+      // As a resumed run will: so that both go on alike.
+      engine.restore_state(a.get("engine/particles"), n);
     }
     ctx.progress(n, p.steps, static_cast<double>(n) * run.dt(), "dpd");
   }
@@ -198,7 +267,7 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   trajectory.keep_final_state(engine, ctx.stage());
 
   auto& r = ctx.results();
-  report_run(r, engine, probes, initial, last, p.steps, seconds);
+  report_run(r, engine, probes, initial, last, p.steps, seconds, p.steps - first_step + 1);
   if (impact) impact->report(r);
   if (tension && rp.mode == Mode::kTension) tension->report(r, ctx.stage());
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],

@@ -68,4 +68,25 @@ void DpdTensionAnalysis::report(StageResults& r, const std::string& stage) const
   r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area_);
 }
 
+void DpdTensionAnalysis::save(CheckpointArchive& a) const {
+  a.put("tension/measures", std::vector<double>{area_, length0_, width_});
+  a.put("tension/time", time_);
+  a.put("tension/strain", strain_);
+  a.put("tension/stress", stress_);
+  a.put("tension/grip_stress", grip_stress_);
+  if (gauge_) gauge_->save(a);
+}
+
+void DpdTensionAnalysis::load(const CheckpointArchive& a) {
+  const auto& m = a.get("tension/measures");
+  area_ = m.at(0);
+  length0_ = m.at(1);
+  width_ = m.at(2);
+  time_ = a.get("tension/time");
+  strain_ = a.get("tension/strain");
+  stress_ = a.get("tension/stress");
+  grip_stress_ = a.get("tension/grip_stress");
+  if (gauge_) gauge_->load(a);
+}
+
 }  // namespace pbms::dpd

@@ -14,6 +14,7 @@
 #include "dpd_model.hpp"
 #include "dpd_run_params.hpp"
 #include "engine/dpd_engine.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::dpd {
@@ -33,6 +34,9 @@ class DpdTensionAnalysis {
   void sample(const DpdEngine& engine, const ThermoState& thermo, double t);
   // Rank 0 at the end.
   void report(StageResults& r, const std::string& stage) const;
+  // Its samples and starting measures, for a checkpoint; and back.
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   TensionParams params_;

@@ -84,7 +84,9 @@ void DpdTrajectory::keep_final_state(const DpdEngine& engine, const std::string&
     const auto u = mpi::sorted_rows(comm_, rows, 2, mpi::RowsTo::kEveryRank);
     for (std::size_t r = 0; r < state.size(); ++r) state.internal_energy[r] = u[2 * r + 1];
   }
-  dpd::keep_final_state(stage, std::move(state));
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  dpd::keep_final_state(stage, std::move(state), rank == 0);
 }
 
 }  // namespace pbms::dpd

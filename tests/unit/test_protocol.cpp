@@ -53,7 +53,9 @@ TEST(Protocol, RunStage) {
              "temperature: 298\n",
              "cu: {kind: eam_alloy}",
              "/tmp/run",
-             0xfedcba9876543210ULL};
+             0xfedcba9876543210ULL,
+             "every_steps: 100\n",
+             "/tmp/run/md/checkpoints/step_000000000100.h5"};
   const auto b = round_trip(r);
   EXPECT_EQ(b.index, 3);
   EXPECT_EQ(b.request, 41);
@@ -63,10 +65,12 @@ TEST(Protocol, RunStage) {
   EXPECT_EQ(b.materials_yaml, r.materials_yaml);
   EXPECT_EQ(b.run_dir, r.run_dir);
   EXPECT_EQ(b.seed, r.seed);
+  EXPECT_EQ(b.checkpoint_yaml, r.checkpoint_yaml);
+  EXPECT_EQ(b.resume_from, r.resume_from);
 }
 
 TEST(Protocol, Progress) {
-  Progress p{7, "isotherm", 1234, 37500, 2.468, "P = 5 GPa: production"};
+  Progress p{7, "isotherm", 1234, 37500, 2.468, "P = 5 GPa: production", "iso/c.h5"};
   const auto b = round_trip(p);
   EXPECT_EQ(b.request, 7);
   EXPECT_EQ(b.stage, p.stage);
@@ -74,6 +78,7 @@ TEST(Protocol, Progress) {
   EXPECT_EQ(b.total_steps, 37500);
   EXPECT_DOUBLE_EQ(b.sim_time_ps, 2.468);
   EXPECT_EQ(b.phase, p.phase);
+  EXPECT_EQ(b.checkpoint, p.checkpoint);
 }
 
 TEST(Protocol, StageDone) {

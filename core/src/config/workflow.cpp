@@ -1,4 +1,5 @@
 #include "pbms/config/workflow.hpp"
+#include "pbms/driver/checkpoint_plan.hpp"
 
 #include <algorithm>
 #include <set>
@@ -133,6 +134,7 @@ Param workflow_schema(const std::vector<DriverDescription>& drivers) {
               .def(YAML::Node(YAML::NodeType::Map)),
           materials_schema(drivers).def(YAML::Node(YAML::NodeType::Map)),
           Param::list_of("stages", stage, "Stages, run in order").require().length(1, 1000),
+          CheckpointPlan::schema(),
       },
       "A PBMS workflow");
 }
@@ -151,6 +153,7 @@ class WorkflowLoader {
     if (!read_root(result)) return result;
     resolved_ = v_.check(workflow_schema(drivers_), root_, "");
     check_run_directory();
+    check_checkpoint();
     collect_stages();
     check_references();
     read_held_files();
@@ -189,6 +192,13 @@ class WorkflowLoader {
       return false;
     }
     return true;
+  }
+
+  // A checkpoint map must say when.
+  void check_checkpoint() {
+    const YAML::Node c = root_["checkpoint"];
+    if (!c || !c.IsMap() || c["every_steps"] || c["every_minutes"]) return;
+    v_.error(c, "checkpoint", "say when to write one: every_steps, every_minutes or both");
   }
 
   // The run directory must be possible: nothing in the way (a file where a

@@ -236,6 +236,9 @@ class DriverRuntime {
     try {
       StageContext ctx(*this, rs.request, rs.name, rs.kind, YAML::Load(rs.params_yaml),
                        YAML::Load(rs.materials_yaml), rs.run_dir, rs.seed);
+      CheckpointPlan plan = CheckpointPlan::from_yaml(YAML::Load(rs.checkpoint_yaml));
+      plan.resume_from = rs.resume_from;
+      ctx.set_checkpoint_plan(std::move(plan));
       auto stage = registry_.create(rs.kind);
       stage->run(ctx);
       if (group().rank() == 0) {
@@ -350,6 +353,18 @@ void StageContext::progress(int64_t step, int64_t total_steps, double sim_time_p
   p.total_steps = total_steps;
   p.sim_time_ps = sim_time_ps;
   p.phase = phase;
+  runtime_.coupler().send(p, 0);
+}
+
+void StageContext::checkpoint_written(int64_t step, double sim_time_ps, const std::string& file) {
+  if (rank() != 0) return;
+  protocol::Progress p;
+  p.request = request_;
+  p.stage = stage_;
+  p.step = step;
+  p.sim_time_ps = sim_time_ps;
+  p.phase = "checkpoint";
+  p.checkpoint = file;
   runtime_.coupler().send(p, 0);
 }
 

@@ -17,6 +17,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "pbms/config/stage_kind_spec.hpp"
+#include "pbms/driver/checkpoint_plan.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms {
@@ -56,6 +57,13 @@ class StageContext {
   // coupler at most every 1 % or 0.5 s. `step` also labels failures.
   void progress(int64_t step, int64_t total_steps, double sim_time_ps, const std::string& phase);
 
+  // The workflow's checkpoints, and the file to resume from.
+  [[nodiscard]] const CheckpointPlan& checkpoint_plan() const { return checkpoint_plan_; }
+  void set_checkpoint_plan(CheckpointPlan plan) { checkpoint_plan_ = std::move(plan); }
+  // Rank 0: tells the coupler that the checkpoint `file` (relative to the
+  // run directory) after `step` is complete.
+  void checkpoint_written(int64_t step, double sim_time_ps, const std::string& file);
+
   // Results are taken from rank 0 when run() returns.
   [[nodiscard]] StageResults& results() { return results_; }
 
@@ -73,6 +81,7 @@ class StageContext {
   std::filesystem::path run_dir_;
   uint64_t seed_;
   StageResults results_;
+  CheckpointPlan checkpoint_plan_;
   std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   double last_report_s_ = -1.0;
   int64_t last_report_step_ = -1;

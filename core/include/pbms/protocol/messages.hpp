@@ -69,7 +69,10 @@ struct RunStage {
   std::string materials_yaml;  // the workflow's resolved materials block
   std::string run_dir;
   uint64_t seed = 0;
-  PBMS_FIELDS(index, request, name, kind, params_yaml, materials_yaml, run_dir, seed)
+  std::string checkpoint_yaml;  // the workflow's `checkpoint:` map, resolved; empty: none
+  std::string resume_from;      // a checkpoint file of this stage to go on from; empty: start
+  PBMS_FIELDS(index, request, name, kind, params_yaml, materials_yaml, run_dir, seed,
+              checkpoint_yaml, resume_from)
 };
 
 struct Progress {
@@ -80,7 +83,10 @@ struct Progress {
   int64_t total_steps = 0;
   double sim_time_ps = 0.0;
   std::string phase;  // "p = 5 GPa, production"
-  PBMS_FIELDS(request, stage, step, total_steps, sim_time_ps, phase)
+  // Set once a checkpoint after `step` is complete on disk: its file,
+  // relative to the run directory. The coupler records it, then prunes.
+  std::string checkpoint;
+  PBMS_FIELDS(request, stage, step, total_steps, sim_time_ps, phase, checkpoint)
 };
 
 struct StageDone {

@@ -1,0 +1,42 @@
+// A driver stage's checkpoints: when one is due, writing it where the
+// coupler expects it (<stage>/checkpoints/step_<N>.h5), and reading the
+// one a resumed run goes on from. What goes into one is the stage's own
+// business (a CheckpointArchive it fills).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "pbms/driver/stage_kind.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
+
+namespace pbms {
+
+class StageCheckpoints {
+ public:
+  explicit StageCheckpoints(StageContext& ctx);
+
+  [[nodiscard]] bool enabled() const { return ctx_.checkpoint_plan().enabled(); }
+  [[nodiscard]] bool resuming() const { return !ctx_.checkpoint_plan().resume_from.empty(); }
+  // Collective: the checkpoint the coupler named, read on rank 0 and handed
+  // to every rank. Throws pbms::Error when it is another stage's or config's.
+  [[nodiscard]] CheckpointArchive resume_archive() const;
+
+  // Collective: whether a checkpoint is due after `step` of `total` (every
+  // N steps, or every T minutes of wall time as rank 0's clock says). Never
+  // after the last step: the stage's results follow at once.
+  [[nodiscard]] bool due(std::int64_t step, std::int64_t total);
+  // Collective; rank 0 writes `archive` and tells the coupler.
+  void write(std::int64_t step, double sim_time_ps, const CheckpointArchive& archive);
+
+  // Whose state a checkpoint holds: the stage, its kind and a digest of its
+  // parameters and materials.
+  [[nodiscard]] std::string identity() const;
+
+ private:
+  StageContext& ctx_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace pbms

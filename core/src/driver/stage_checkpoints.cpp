@@ -1,0 +1,62 @@
+#include "pbms/driver/stage_checkpoints.hpp"
+
+#include <fmt/format.h>
+
+#include "pbms/io/yaml_file.hpp"
+#include "pbms/mpi/comm.hpp"
+
+namespace pbms {
+namespace {
+
+// FNV-1a: a digest to tell configs apart, not a guard against tampering.
+std::uint64_t digest(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+}  // namespace
+
+StageCheckpoints::StageCheckpoints(StageContext& ctx) : ctx_(ctx) {}
+
+std::string StageCheckpoints::identity() const {
+  std::string text = yaml_text(ctx_.params());
+  if (ctx_.params()["material"]) text += yaml_text(ctx_.material());
+  return fmt::format("stage '{}' ({}), parameters {:016x}", ctx_.stage(), ctx_.kind(),
+                     digest(text));
+}
+
+CheckpointArchive StageCheckpoints::resume_archive() const {
+  return CheckpointArchive::read(ctx_.checkpoint_plan().resume_from, identity(), ctx_.comm());
+}
+
+bool StageCheckpoints::due(std::int64_t step, std::int64_t total) {
+  const CheckpointPlan& plan = ctx_.checkpoint_plan();
+  if (!plan.enabled() || step >= total) return false;
+  if (plan.every_steps > 0 && step % plan.every_steps == 0) return true;
+  if (!(plan.every_seconds > 0.0)) return false;
+  // Clocks differ between ranks: rank 0's decides for all.
+  int yes = 0;
+  if (ctx_.rank() == 0) {
+    yes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >=
+          plan.every_seconds;
+  }
+  mpi::check(MPI_Bcast(&yes, 1, MPI_INT, 0, ctx_.comm()), "MPI_Bcast");
+  return yes != 0;
+}
+
+void StageCheckpoints::write(std::int64_t step, double sim_time_ps,
+                             const CheckpointArchive& archive) {
+  const std::string relative = fmt::format("{}/checkpoints/step_{:012d}.h5", ctx_.stage(), step);
+  if (ctx_.rank() == 0) {
+    archive.write(ctx_.run_dir() / relative, identity());
+    ctx_.checkpoint_written(step, sim_time_ps, relative);
+  }
+  mpi::check(MPI_Barrier(ctx_.comm()), "MPI_Barrier");
+  last_ = std::chrono::steady_clock::now();
+}
+
+}  // namespace pbms

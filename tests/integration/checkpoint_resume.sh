@@ -1,0 +1,141 @@
+source "$(dirname "$0")/lib.sh"
+# Checkpoint and resume of dpd_run (tests/integration/configs/checkpoint_dpd.yaml:
+# 1,000 steps, a checkpoint every 100). Each case runs the stage whole, and
+# again killed: the test holds the writer of the checkpoint after step 900
+# between its data and its rename (PBMS_TEST_CHECKPOINT_PAUSE) and sends
+# SIGKILL to a dpd_driver rank then. The kill must leave the half-written
+# file under its temporary name, the manifest listing the checkpoints up to
+# step 800 only; `./pbms run --resume` must go on from step 800 and end:
+#  - on the same ranks, bitwise as the whole run: every summary.yaml value
+#    (timings aside), every results.h5 dataset of the stage, and the final
+#    positions and velocities;
+#  - on 1 rank instead of 2 (a copy of the killed run), to the rank tests'
+#    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh);
+# for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
+# crystal (shardlow_dpde) and a rigid flyer's impact. Then a resume with a
+# changed key is refused, naming it.
+export PBMS_SKIP_BUILD=1
+base="$(dirname "$0")/configs/checkpoint_dpd.yaml"
+
+"$PY" - "$base" <<'PYEOF'
+import sys, copy, yaml
+base = yaml.safe_load(open(sys.argv[1]))
+def write(name, cfg):
+    cfg = copy.deepcopy(cfg)
+    cfg["run"]["name"] = name
+    yaml.safe_dump(cfg, open(f"{name}.yaml", "w"), sort_keys=False)
+pull = base
+dpde = copy.deepcopy(base)
+stage = dpde["stages"][0]
+for k in ("mode", "groups", "motion", "tension", "probes"):
+    stage.pop(k)
+stage.update({"name": "dpde", "scheme": "shardlow_dpde", "gamma": 5})
+stage["box"] = {"lo": [0, 0, -6], "hi": [57.84, 43.38, 49.38], "periodic": ["x", "y"]}
+stage["bodies"] = [{"name": "crystal", "region": {"style": "block", "lo": [0, 0, 0], "hi": [57.84, 43.38, 43.38]}}]
+stage["probes"] = [{"name": "e", "kind": "energy"}]
+impact = copy.deepcopy(base)
+stage = impact["stages"][0]
+stage.update({"name": "impact", "mode": "impact"})
+stage.pop("tension")
+stage["bodies"] = [{"name": "rod", "region": {"style": "block", "lo": [0, 0, 0], "hi": [72.3, 21.69, 21.69]}},
+                   {"name": "flyer", "region": {"style": "block", "lo": [-15.46, 0, 0], "hi": [-1, 21.69, 21.69]}}]
+stage["groups"] = [{"name": "near", "region": {"style": "block", "lo": [10, -1, -1], "hi": [16, 23, 23]}},
+                   {"name": "far", "region": {"style": "block", "lo": [50, -1, -1], "hi": [56, 23, 23]}}]
+stage["motion"] = [{"group": "flyer", "kind": "rigid_body", "velocity": [5, 0, 0]}]
+stage["impact"] = {"near_slab": "near", "far_slab": "far", "axis": "x"}
+stage["probes"] = [{"name": "T", "kind": "temperature"}]
+for case, cfg in (("pull", pull), ("dpde", dpde), ("impact", impact)):
+    write(f"{case}_whole", cfg)
+    write(f"{case}_killed", cfg)
+    write(f"{case}_one_rank", cfg)
+PYEOF
+
+# Runs CASE_killed, holds the checkpoint write after step 900 and kills a rank.
+run_killed() {
+  local case=$1 stage=$2 run="$PWD/runs/${1}_killed"
+  local partial="$run/$stage/checkpoints/step_000000000900.h5.partial"
+  PBMS_TEST_CHECKPOINT_PAUSE="step_000000000900:120" "$PBMS" run "${case}_killed.yaml" \
+    > "${case}_killed.out" 2>&1 &
+  local pid=$!
+  for _ in $(seq 1 600); do
+    [ -f "$partial" ] && break
+    kill -0 $pid 2>/dev/null || { cat "${case}_killed.out"; fail "$case: ended before the kill"; }
+    sleep 0.1
+  done
+  [ -f "$partial" ] || fail "$case: no checkpoint write after step 900 to kill"
+  kill -9 "$(job_process dpd_driver)"
+  timeout 60 tail --pid=$pid -f /dev/null || fail "$case: the job did not end after the kill"
+  ! wait $pid || fail "$case: the killed job exited 0"
+  [ -f "$partial" ] || fail "$case: the half-written checkpoint is gone"
+  "$PY" - "$run" "$stage" <<'PYEOF' || fail "$case: the manifest lists an incomplete checkpoint"
+import sys, yaml
+m = yaml.safe_load(open(f"{sys.argv[1]}/manifest.yaml"))
+s = next(s for s in m["stages"] if s["name"] == sys.argv[2])
+steps = [c["step"] for c in s.get("checkpoints") or []]
+assert steps and max(steps) == 800, steps
+print(f"  killed during the write after step 900: the manifest lists {steps}")
+PYEOF
+}
+
+compare() {  # compare WHOLE RESUMED STAGE POSITION_TOL VELOCITY_TOL
+  "$PY" - "$PWD/runs/$1" "$PWD/runs/$2" "$3" "$4" "$5" <<'PYEOF'
+import sys, yaml, h5py, numpy as np
+a, b, stage, xtol, vtol = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5])
+timing = ("steps_per_second", "wall_s")
+bad = []
+sa = yaml.safe_load(open(f"{a}/summary.yaml"))["stages"][stage]["results"]
+sb = yaml.safe_load(open(f"{b}/summary.yaml"))["stages"][stage]["results"]
+exact = xtol == 0
+for k, v in sa.items():
+    if k in timing:
+        continue
+    w = sb.get(k, {}).get("value")
+    same = w == v["value"] if exact else w is not None and abs(w - v["value"]) <= 1e-6 * max(1.0, abs(v["value"]))
+    if not same:
+        bad.append(f"summary {k}: {v['value']!r} whole, {w!r} resumed")
+if exact:
+    with h5py.File(f"{a}/results.h5") as fa, h5py.File(f"{b}/results.h5") as fb:
+        def walk(g, h, path):
+            for k in g:
+                if isinstance(g[k], h5py.Group):
+                    walk(g[k], h[k], f"{path}/{k}")
+                elif k not in timing and not np.array_equal(g[k][()], h[k][()]):
+                    bad.append(f"results.h5 {path}/{k} differs")
+        walk(fa[stage], fb[stage], stage)
+with h5py.File(f"{a}/{stage}/particles.h5md") as fa, h5py.File(f"{b}/{stage}/particles.h5md") as fb:
+    for q, tol in (("positions", xtol), ("velocities", vtol)):
+        field = {"positions": "position", "velocities": "velocity"}[q]
+        x, y = fa[f"particles/all/{field}/value"][-1], fb[f"particles/all/{field}/value"][-1]
+        d = float(np.max(np.abs(x - y)))
+        if (exact and not np.array_equal(x, y)) or d > tol:
+            bad.append(f"final {q} differ by up to {d:.3g}")
+        print(f"  final {q}: largest difference {d:.3g}")
+for line in bad:
+    print("  " + line)
+sys.exit(1 if bad else 0)
+PYEOF
+}
+
+for spec in pull:pull dpde:dpde impact:impact; do
+  case=${spec%%:*} stage=${spec##*:}
+  echo "== $case"
+  "$PBMS" run "${case}_whole.yaml" > "${case}_whole.out" 2>&1 || { cat "${case}_whole.out"; fail "$case: the whole run"; }
+  run_killed "$case" "$stage"
+  cp -a "runs/${case}_killed" "runs/${case}_one_rank"
+  "$PBMS" run "${case}_killed.yaml" --resume > "${case}_resumed.out" 2>&1 ||
+    { cat "${case}_resumed.out"; fail "$case: the resume"; }
+  grep -q "goes on from its checkpoint .*step_000000000800.h5" "${case}_resumed.out" ||
+    { cat "${case}_resumed.out"; fail "$case: the resume did not go on from step 800"; }
+  compare "${case}_whole" "${case}_killed" "$stage" 0 0 || fail "$case: resumed on 2 ranks, not bitwise"
+  "$PBMS" run "${case}_one_rank.yaml" --resume --ranks dpd=1 > "${case}_one_rank.out" 2>&1 ||
+    { cat "${case}_one_rank.out"; fail "$case: the resume on 1 rank"; }
+  compare "${case}_whole" "${case}_one_rank" "$stage" 1e-9 1e-10 ||
+    fail "$case: resumed on 1 rank, beyond round-off"
+done
+
+echo "== a changed config"
+sed -i 's/steps: 1000/steps: 1200/' pull_killed.yaml
+if "$PBMS" run pull_killed.yaml --resume > changed.out 2>&1; then fail "a changed config was resumed"; fi
+grep -q "stages\[0\].steps: '1000' in the earlier run, '1200' now" changed.out ||
+  { cat changed.out; fail "the refusal does not name the changed key"; }
+echo "  refused: $(grep -o "the config has changed since: .* now" changed.out)"
