@@ -55,10 +55,11 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
   compute_forces(Tally::kForcesOnly);
 }
 
-std::vector<double> DpdEngine::gather_state() const {
+DpdEngine::State DpdEngine::gather_state() const {
   std::vector<double> mine;
   mine.reserve(owned_ * kStateWidth);
   const DpdParticles& p = particles_;
+  const std::vector<Vec3>& built = list_.positions_at_build();
   for (std::size_t i = 0; i < owned_; ++i) {
     mine.insert(mine.end(), {static_cast<double>(p.id[i]), static_cast<double>(p.type[i]),
                              static_cast<double>(p.group_mask[i])});
@@ -67,41 +68,85 @@ std::vector<double> DpdEngine::gather_state() const {
     for (int a = 0; a < 3; ++a) mine.push_back(p.v[i][a]);
     for (int a = 0; a < 3; ++a) mine.push_back(p.f[i][a]);
     mine.push_back(p.internal_energy[i]);
+    for (int a = 0; a < 3; ++a) mine.push_back(i < built.size() ? built[i][a] : p.x[i][a]);
   }
-  return mpi::sorted_rows(comm(), mine, kStateWidth, mpi::RowsTo::kEveryRank);
+  State out;
+  const int ranks = domain_.size();
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(counts.size());
+  mpi::check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm()), "MPI_Gather");
+  int total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = total;
+    total += counts[r];
+    out.counts.push_back(static_cast<double>(counts[r] / static_cast<int>(kStateWidth)));
+  }
+  out.rows.resize(domain_.rank() == 0 ? static_cast<std::size_t>(total) : 0);
+  mpi::check(MPI_Gatherv(mine.data(), count, MPI_DOUBLE, out.rows.data(), counts.data(),
+                         offsets.data(), MPI_DOUBLE, 0, comm()),
+             "MPI_Gatherv");
+  return out;
 }
 
-void DpdEngine::restore_state(const std::vector<double>& rows, std::int64_t step) {
-  if (rows.size() % kStateWidth != 0 ||
-      static_cast<std::int64_t>(rows.size() / kStateWidth) != total_) {
-    throw Error(fmt::format("DPD engine: the checkpoint holds {} particles, this run {}",
-                            rows.size() / kStateWidth, total_));
-  }
+namespace {
+
+DpdParticles particles_of(const std::vector<double>& rows, const std::vector<std::size_t>& which,
+                          bool at_build) {
   DpdParticles all;
-  for (std::size_t k = 0; k < rows.size(); k += kStateWidth) {
-    const double* r = &rows[k];
-    all.add(static_cast<std::int64_t>(r[0]), static_cast<int>(r[1]), {r[3], r[4], r[5]},
-            {r[9], r[10], r[11]});
+  for (const std::size_t k : which) {
+    const double* r = &rows[k * DpdEngine::kStateWidth];
+    const Vec3 x = at_build ? Vec3{r[16], r[17], r[18]} : Vec3{r[3], r[4], r[5]};
+    all.add(static_cast<std::int64_t>(r[0]), static_cast<int>(r[1]), x, {r[9], r[10], r[11]});
     all.group_mask.back() = static_cast<std::uint32_t>(r[2]);
     all.image.back() = {static_cast<int>(r[6]), static_cast<int>(r[7]), static_cast<int>(r[8])};
     all.f.back() = {r[12], r[13], r[14]};
     all.internal_energy.back() = r[15];
   }
-  // Between list builds positions drift past periodic faces: wrapped, each
-  // has exactly one owner.
-  wrap_periodic_axes(all, domain_.box(), all.size());
-  particles_.truncate(0);
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (!domain_.owns(all.x[i])) continue;
-    particles_.add(all.id[i], all.type[i], all.x[i], all.v[i]);
-    particles_.group_mask.back() = all.group_mask[i];
-    particles_.image.back() = all.image[i];
-    particles_.f.back() = all.f[i];
-    particles_.internal_energy.back() = all.internal_energy[i];
+  return all;
+}
+
+}  // namespace
+
+void DpdEngine::restore_state(const State& state, std::int64_t step) {
+  const std::size_t n = state.rows.size() / kStateWidth;
+  if (state.rows.size() % kStateWidth != 0 || static_cast<std::int64_t>(n) != total_) {
+    throw Error(
+        fmt::format("DPD engine: the checkpoint holds {} particles, this run {}", n, total_));
   }
+  // Which rows this rank takes: on as many ranks as wrote them its own, in
+  // their order; else, in id order, those whose build position it owns.
+  std::vector<std::size_t> mine;
+  if (static_cast<int>(state.counts.size()) == domain_.size()) {
+    std::size_t from = 0;
+    for (int r = 0; r < domain_.rank(); ++r) from += static_cast<std::size_t>(state.counts[r]);
+    const auto count = static_cast<std::size_t>(state.counts[domain_.rank()]);
+    for (std::size_t k = from; k < from + count; ++k) mine.push_back(k);
+  } else {
+    std::vector<std::size_t> order(n);
+    for (std::size_t k = 0; k < n; ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return state.rows[a * kStateWidth] < state.rows[b * kStateWidth];
+    });
+    const DpdParticles built = particles_of(state.rows, order, true);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (domain_.owns(built.x[i])) mine.push_back(order[i]);
+    }
+  }
+  // Ghosts, list and Shardlow sweep order are built from the positions the
+  // writer built them from, so that they hold the same pairs in the same
+  // sweep order; then the particles move on to where they are now.
+  const std::vector<double> mass = particles_.mass_per_type;
+  const DpdParticles now = particles_of(state.rows, mine, false);
+  particles_ = particles_of(state.rows, mine, true);
+  particles_.mass_per_type = mass;
   owned_ = particles_.size();
   step_ = step;
   rebuild();
+  for (std::size_t i = 0; i < owned_; ++i) {
+    particles_.x[i] = now.x[i];
+    particles_.image[i] = now.image[i];
+  }
+  ghosts_.forward(particles_);
 }
 
 void DpdEngine::set_prescribed_groups(std::uint32_t mask) {

@@ -124,18 +124,25 @@ class DpdEngine {
   // Scales the free particles' velocities towards T over tau (Berendsen).
   void berendsen(double temperature, double tau);
 
-  // What a checkpoint holds of the engine: every rank's owned particles as
-  // rows of kStateWidth (id, type, groups, x, image, v, f, internal
-  // energy), sorted by id, on every rank. Collective.
-  static constexpr std::size_t kStateWidth = 16;
-  [[nodiscard]] std::vector<double> gather_state() const;
-  // Takes `rows` (gather_state's, the same on every rank, from this run or
-  // a checkpoint) as the particles after `step`: each rank keeps the ones
-  // its sub-box owns, in id order, then ghosts and list anew. The forces
-  // are the rows', not recomputed: the next half kick is the one the
-  // checkpointed run made. A run that writes a checkpoint takes its own
-  // rows back the same way, so that it goes on exactly as a resumed one.
-  void restore_state(const std::vector<double>& rows, std::int64_t step);
+  // What a checkpoint holds of the engine: each rank's owned particles in
+  // the order it stores them, rank after rank, as rows of kStateWidth (id,
+  // type, groups, x, image, v, f, internal energy, and the position the
+  // neighbour list was built from), and how many each rank holds. Rank 0
+  // gets them (collective).
+  static constexpr std::size_t kStateWidth = 19;
+  struct State {
+    std::vector<double> rows;
+    std::vector<double> counts;  // per rank
+  };
+  [[nodiscard]] State gather_state() const;
+  // Takes `state` (every rank the same) as the particles after `step`. On
+  // as many ranks as wrote it, each rank takes back its own particles in
+  // their order and builds ghosts and list from the positions the writer
+  // built them from, then moves on to the current ones: the run goes on
+  // bit for bit as the one that wrote it. On another rank count the
+  // particles go to their owners in id order and ghosts and list are built
+  // anew: the same to round-off. Forces are the state's, not recomputed.
+  void restore_state(const State& state, std::int64_t step);
 
   // All-rank sums; with_potential costs one extra pair pass. The potential
   // counts each pair with a partner in full.

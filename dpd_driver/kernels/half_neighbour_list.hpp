@@ -70,6 +70,9 @@ class HalfNeighbourList {
   // when there were none).
   [[nodiscard]] std::size_t partners_from() const { return partners_from_; }
   [[nodiscard]] long build_count() const { return builds_; }
+  // The owned particles' positions at the last build (wrapped): a list
+  // built again from them is this one.
+  [[nodiscard]] const std::vector<Vec3>& positions_at_build() const { return x_at_build_; }
 
   // Neighbours of particle i are entries [first(i), first(i + 1)).
   [[nodiscard]] std::size_t first(std::size_t i) const { return first_[i]; }

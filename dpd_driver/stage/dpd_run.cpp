@@ -137,7 +137,9 @@ struct DpdRun {
   // energy_drift is measured from.
   CheckpointArchive save(const ThermoState& initial) const {
     CheckpointArchive a;
-    a.put("engine/particles", engine.gather_state());
+    const DpdEngine::State state = engine.gather_state();
+    a.put("engine/particles", state.rows);
+    a.put("engine/rank_counts", state.counts);
     a.put("engine/step", static_cast<double>(engine.step_count()));
     a.put("run/initial_energies",
           std::vector<double>{initial.kinetic, initial.potential, initial.internal});
@@ -150,7 +152,7 @@ struct DpdRun {
   // `initial`.
   std::int64_t load(const CheckpointArchive& a, ThermoState& initial) {
     const auto step = static_cast<std::int64_t>(a.scalar("engine/step"));
-    engine.restore_state(a.get("engine/particles"), step);
+    engine.restore_state({a.get("engine/particles"), a.get("engine/rank_counts")}, step);
     const auto& e = a.get("run/initial_energies");
     initial.kinetic = e.at(0);
     initial.potential = e.at(1);
@@ -256,8 +258,6 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
     if (checkpointed && checkpoints.due(n, p.steps)) {
       const CheckpointArchive a = run.save(initial);
       checkpoints.write(n, static_cast<double>(n) * run.dt(), a);
-      // As a resumed run will: so that both go on alike.
-      engine.restore_state(a.get("engine/particles"), n);
     }
     ctx.progress(n, p.steps, static_cast<double>(n) * run.dt(), "dpd");
   }

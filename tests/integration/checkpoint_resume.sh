@@ -12,8 +12,10 @@ source "$(dirname "$0")/lib.sh"
 #  - on 1 rank instead of 2 (a copy of the killed run), to the rank tests'
 #    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh);
 # for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
-# crystal (shardlow_dpde) and a rigid flyer's impact. Then a resume with a
-# changed key is refused, naming it.
+# crystal (shardlow_dpde) and a rigid flyer's impact. The pull without a
+# checkpoint: block ends bitwise as the whole run that wrote them: writing
+# one disturbs nothing. Then a resume with a changed key is refused,
+# naming it.
 export PBMS_SKIP_BUILD=1
 base="$(dirname "$0")/configs/checkpoint_dpd.yaml"
 
@@ -44,6 +46,9 @@ stage["groups"] = [{"name": "near", "region": {"style": "block", "lo": [10, -1, 
 stage["motion"] = [{"group": "flyer", "kind": "rigid_body", "velocity": [5, 0, 0]}]
 stage["impact"] = {"near_slab": "near", "far_slab": "far", "axis": "x"}
 stage["probes"] = [{"name": "T", "kind": "temperature"}]
+plain = copy.deepcopy(pull)
+plain.pop("checkpoint")
+write("pull_plain", plain)
 for case, cfg in (("pull", pull), ("dpde", dpde), ("impact", impact)):
     write(f"{case}_whole", cfg)
     write(f"{case}_killed", cfg)
@@ -132,6 +137,10 @@ for spec in pull:pull dpde:dpde impact:impact; do
   compare "${case}_whole" "${case}_one_rank" "$stage" 1e-9 1e-10 ||
     fail "$case: resumed on 1 rank, beyond round-off"
 done
+
+echo "== writing checkpoints changes nothing: the pull without checkpoint:"
+"$PBMS" run pull_plain.yaml > pull_plain.out 2>&1 || { cat pull_plain.out; fail "the pull without checkpoints"; }
+compare pull_whole pull_plain pull 0 0 || fail "writing checkpoints changed the pull"
 
 echo "== a changed config"
 sed -i 's/steps: 1000/steps: 1200/' pull_killed.yaml
