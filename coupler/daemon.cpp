@@ -17,6 +17,7 @@
 #include "capabilities.hpp"
 #include "driver_catalog.hpp"
 #include "earlier_run.hpp"
+#include "pbms/driver/stop_request.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/mpmd.hpp"
 #include "pbms/progress_meter.hpp"
@@ -69,6 +70,7 @@ class Daemon {
   explicit Daemon(const DaemonOptions& opt) : opt_(opt), console_(opt.terminal) {}
 
   int run() {
+    install_stop_handlers();
     auto world = mpi::MpmdWorld::join(mpi::Role::kCoupler);
     if (world.local().size() != 1) throw Error("the coupler runs as exactly one process");
     scheduler_ = Scheduler(Scheduler::connect(world), [this](const protocol::Fatal& f) {
@@ -127,6 +129,28 @@ class Daemon {
       log(fmt::format("  {} on {} rank{} (declares: {})", l.hello.program, l.app.size,
                       l.app.size == 1 ? "" : "s", fmt::join(l.hello.capabilities, ", ")));
     }
+    try {
+      run_stages();
+    } catch (const JobStopped&) {
+      // The drivers are alive and idle: they end cleanly, and the job ends
+      // non-zero through the coupler's exit code.
+      scheduler_.shutdown("stopped on request");
+      spdlog::shutdown();
+      return 3;
+    }
+    scheduler_.shutdown("workflow complete");
+    record_->finished();
+    log(fmt::format("done: summary in {}", (record_->dir() / "summary.yaml").string()));
+    spdlog::shutdown();
+    return 0;
+  }
+
+ private:
+  // A run stopped on request (stop_request.hpp) once its stage wrote a
+  // checkpoint: not a failure, and the job must end cleanly.
+  struct JobStopped {};
+
+  void run_stages() {
     for (size_t i = 0; i < wf_.stages.size(); ++i) {
       const auto& name = wf_.stages[i].name;
       if (earlier_ && earlier_->finished(name)) {
@@ -141,14 +165,8 @@ class Daemon {
         fail("coupler", 0, wf_.stages[i].name, -1, e.what());
       }
     }
-    scheduler_.shutdown("workflow complete");
-    record_->finished();
-    log(fmt::format("done: summary in {}", (record_->dir() / "summary.yaml").string()));
-    spdlog::shutdown();
-    return 0;
   }
 
- private:
   [[nodiscard]] int keep_checkpoints() const {
     const YAML::Node c = wf_.resolved["checkpoint"];
     return c && c["keep"] ? c["keep"].as<int>() : 2;
@@ -234,6 +252,9 @@ class Daemon {
         return;
       }
     }
+    // A stop request (SIGTERM, SIGUSR1) reaches the drivers too: the
+    // coupler waits for the stage to write its checkpoint and stop.
+    const StopWindow stop_window;
     const auto request = scheduler_.submit(stage.program, rs);
     // Partners (the MPM part of a concurrent stage) start at the same time:
     // their parts exchange data with the main one rank to rank.
@@ -275,6 +296,12 @@ class Daemon {
     if (identity) cache.store(*identity, done, record_->dir());
     log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
     finish_stage(stage, std::move(done));
+    if (stop_requested()) {
+      fail(stage.program, 0, stage.name, -1,
+           fmt::format("stopped by a signal (SIGTERM or SIGUSR1: a wall-time limit?) as stage "
+                       "'{}' finished",
+                       stage.name));
+    }
   }
 
   // A stage the coupler runs itself: it sends its own requests through the
@@ -362,9 +389,17 @@ class Daemon {
                                   ? std::string()
                                   : fmt::format(" in stage '{}'{}", stage,
                                                 step >= 0 ? fmt::format(" at step {}", step) : "");
-    const std::string text = fmt::format("{} rank {} failed{}: {}", program, rank, where, message);
-    std::cerr << "pbms: error: " << text << "\n" << std::flush;
+    const bool stopped = message.starts_with("stopped by a signal");
+    const std::string text =
+        stopped ? fmt::format("{}{}: {}; to go on from there: ./pbms run {} --resume", program,
+                              where, message, opt_.config)
+                : fmt::format("{} rank {} failed{}: {}", program, rank, where, message);
+    std::cerr << (stopped ? "pbms: stopped: " : "pbms: error: ") << text << "\n" << std::flush;
     if (file_log_) file_log_->error(text);
+    if (stopped) {
+      record_->failed(program, rank, stage, step, text, "stopped");
+      throw JobStopped{};
+    }
     try {
       record_->failed(program, rank, stage, step, message);
     } catch (const std::exception& e) {

@@ -198,6 +198,11 @@ int postmortem(const std::filesystem::path& run_dir, int mpirun_exit_code,
   YAML::Node manifest = YAML::LoadFile(manifest_path.string());
   const std::string status = manifest["status"].as<std::string>("running");
   if (status == "ok") return mpirun_exit_code;
+  if (status == "stopped") {  // on request, after a checkpoint: the coupler said how to go on
+    std::cerr << fmt::format("pbms: run stopped: {}\n",
+                             manifest["failure"]["message"].as<std::string>(""));
+    return failure_exit_code(mpirun_exit_code);
+  }
   if (status == "failed") {
     report_recorded_failure(manifest["failure"], run_dir);
     return failure_exit_code(mpirun_exit_code);

@@ -252,15 +252,16 @@ void RunRecord::stage_finished(const config::StageConfig& stage, const StageResu
   write_manifest();
 }
 
-void RunRecord::stage_failed(const std::string& stage, const std::string& kind) {
+void RunRecord::stage_failed(const std::string& stage, const std::string& kind,
+                             const std::string& status) {
   YAML::Node s;
   s["kind"] = kind;
-  s["status"] = "failed";
+  s["status"] = status;
   s["results"] = YAML::Node(YAML::NodeType::Map);
   summary_["stages"][stage] = s;
   write_summary();
   for (auto n : manifest_["stages"]) {
-    if (n["name"].as<std::string>() == stage) n["status"] = "failed";
+    if (n["name"].as<std::string>() == stage) n["status"] = status;
   }
 }
 
@@ -303,7 +304,7 @@ std::string RunRecord::newest_checkpoint(const std::string& stage) const {
 }
 
 void RunRecord::failed(const std::string& program, int rank, const std::string& stage, int64_t step,
-                       const std::string& message) {
+                       const std::string& message, const std::string& status) {
   YAML::Node f;
   f["program"] = program;
   f["rank"] = rank;
@@ -311,14 +312,14 @@ void RunRecord::failed(const std::string& program, int rank, const std::string& 
   if (step >= 0) f["step"] = step;
   f["message"] = message;
   manifest_["failure"] = f;
-  manifest_["status"] = "failed";
+  manifest_["status"] = status;
   manifest_["finished"] = now_iso8601();
   if (!stage.empty()) {
     std::string kind;
     for (const auto& n : manifest_["stages"]) {
       if (n["name"].as<std::string>() == stage) kind = n["kind"].as<std::string>();
     }
-    stage_failed(stage, kind);
+    stage_failed(stage, kind, status);
   }
   write_manifest();
 }

@@ -54,7 +54,8 @@ class RunRecord {
   void stage_started(const config::StageConfig& stage);
   void progress(const std::string& stage, int64_t step, int64_t total, double sim_time_ps);
   void stage_finished(const config::StageConfig& stage, const StageResults& results, double wall_s);
-  void stage_failed(const std::string& stage, const std::string& kind);
+  void stage_failed(const std::string& stage, const std::string& kind,
+                    const std::string& status = "failed");
   // A complete checkpoint of `stage` after `step`: listed under the stage
   // in the manifest; then all but the newest `keep` are deleted.
   void checkpoint_written(const std::string& stage, int64_t step, const std::string& file,
@@ -62,8 +63,9 @@ class RunRecord {
   // The newest complete checkpoint of `stage` the manifest lists (an
   // absolute path), or empty.
   [[nodiscard]] std::string newest_checkpoint(const std::string& stage) const;
+  // `status` is "failed", or "stopped" for a run stopped on request.
   void failed(const std::string& program, int rank, const std::string& stage, int64_t step,
-              const std::string& message);
+              const std::string& message, const std::string& status = "failed");
   void finished();
 
  private:

@@ -137,7 +137,7 @@ def table(headers, rows, cls=""):
 
 def shown_status(run, stage):
     """A stage left 'running' by a job that has ended did not finish: 'stopped'."""
-    if stage.status == "running" and rr.run_status(run) in ("ok", "failed"):
+    if stage.status == "running" and rr.run_status(run) in ("ok", "failed", "stopped"):
         return "stopped"
     return stage.status
 
@@ -307,7 +307,7 @@ def header_section(run, all_warnings):
     m = run.manifest
     status = rr.run_status(run)
     parts = [f"<h1>Run <code>{esc(run.name)}</code> {badge(status)}</h1>"]
-    if status == "failed":
+    if status in ("failed", "stopped"):
         parts.append(failure_box(run))
     if status == "running":
         parts.append(running_box(run))
@@ -452,10 +452,13 @@ def stage_state_box(run, stage, status):
         text = failure_text(failure, False) if mine else "this stage failed; see the run's failure above"
         return f'<div class="box fail"><b>Failed.</b> {esc(text)}</div>'
     if status == "pending":
-        why = " The run ended before it." if rr.run_status(run) == "failed" else ""
+        why = " The run ended before it." if rr.run_status(run) in ("failed", "stopped") else ""
         return f'<div class="box idle">Not run yet.{why}</div>'
     if status == "stopped":
-        return '<div class="box fail">Stopped: the job ended while this stage ran.</div>'
+        failure = run.manifest.get("failure")
+        mine = isinstance(failure, dict) and str(failure.get("stage")) == stage.name
+        text = failure_text(failure, False) if mine else "the job ended while this stage ran"
+        return f'<div class="box fail"><b>Stopped.</b> {esc(text)}</div>'
     if status == "running":
         return f'<div class="box run">Running: {esc(progress_text(run, stage) or "started")}.</div>'
     return ""
@@ -755,7 +758,7 @@ def last_lines(run, report_path):
         if status == "ok":
             nums = [f"{k} {fmt_result(s.results[k])}" for k, _ in rr.headline_keys(s) if k in s.results]
             head += (": " + ", ".join(nums)) if nums else ""
-        elif status == "failed":
+        elif status in ("failed", "stopped"):
             failure = run.manifest.get("failure")
             if isinstance(failure, dict) and str(failure.get("stage")) == s.name:
                 head += ": " + failure_text(failure, False)

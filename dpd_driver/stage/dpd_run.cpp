@@ -255,9 +255,17 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
     if ((p.particles_every > 0 && n % p.particles_every == 0) || n == p.steps) {
       trajectory.write_frame(engine, n, run.dt());
     }
-    if (checkpointed && checkpoints.due(n, p.steps)) {
-      const CheckpointArchive a = run.save(initial);
-      checkpoints.write(n, static_cast<double>(n) * run.dt(), a);
+    const bool stop = checkpoints.stop_agreed(n) && n < p.steps;
+    if (checkpointed && (stop || checkpoints.due(n, p.steps))) {
+      const std::string file =
+          checkpoints.write(n, static_cast<double>(n) * run.dt(), run.save(initial));
+      if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, p.steps, file));
+    }
+    if (stop) {
+      throw StageFailure(fmt::format(
+          "stopped by a signal after step {} of {}; this stage writes no checkpoints, and a "
+          "resumed run starts it again",
+          n, p.steps));
     }
     ctx.progress(n, p.steps, static_cast<double>(n) * run.dt(), "dpd");
   }

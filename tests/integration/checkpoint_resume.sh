@@ -14,8 +14,10 @@ source "$(dirname "$0")/lib.sh"
 # for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
 # crystal (shardlow_dpde) and a rigid flyer's impact. The pull without a
 # checkpoint: block ends bitwise as the whole run that wrote them: writing
-# one disturbs nothing. Then a resume with a changed key is refused,
-# naming it.
+# one disturbs nothing. SIGTERM to `./pbms run` during the pull: the job
+# writes a checkpoint at the next step boundary and ends non-zero within
+# 10 s, saying how to go on, and the resume from it is bitwise as above.
+# Then a resume with a changed key is refused, naming it.
 export PBMS_SKIP_BUILD=1
 base="$(dirname "$0")/configs/checkpoint_dpd.yaml"
 
@@ -53,6 +55,7 @@ for case, cfg in (("pull", pull), ("dpde", dpde), ("impact", impact)):
     write(f"{case}_whole", cfg)
     write(f"{case}_killed", cfg)
     write(f"{case}_one_rank", cfg)
+write("pull_signalled", pull)
 PYEOF
 
 # Runs CASE_killed, holds the checkpoint write after step 900 and kills a rank.
@@ -137,6 +140,24 @@ for spec in pull:pull dpde:dpde impact:impact; do
   compare "${case}_whole" "${case}_one_rank" "$stage" 1e-9 1e-10 ||
     fail "$case: resumed on 1 rank, beyond round-off"
 done
+
+echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
+"$PBMS" run pull_signalled.yaml > signalled.out 2>&1 &
+launcher=$!
+run="$PWD/runs/pull_signalled"
+wait_for_step "$run" pull "[1-9][0-9][0-9]" $launcher 600
+t0=$(date +%s.%N)
+kill -TERM $launcher
+timeout 10 tail --pid=$launcher -f /dev/null || fail "the job did not end within 10 s of SIGTERM"
+echo "  ended $(printf '%.1f' "$(echo "$(date +%s.%N) - $t0" | bc)") s after SIGTERM"
+! wait $launcher || fail "the signalled job exited 0"
+grep -q "to go on from there: ./pbms run pull_signalled.yaml --resume" signalled.out ||
+  { cat signalled.out; fail "the stopped job does not say how to go on"; }
+[ "$(yget "$run/manifest.yaml" status)" = stopped ] || fail "the manifest does not say stopped"
+"$PBMS" run pull_signalled.yaml --resume > signalled_resumed.out 2>&1 ||
+  { cat signalled_resumed.out; fail "the resume after SIGTERM"; }
+grep -o "goes on from its checkpoint .*" signalled_resumed.out | sed 's/^/  /'
+compare pull_whole pull_signalled pull 0 0 || fail "resumed after SIGTERM, not bitwise"
 
 echo "== writing checkpoints changes nothing: the pull without checkpoint:"
 "$PBMS" run pull_plain.yaml > pull_plain.out 2>&1 || { cat pull_plain.out; fail "the pull without checkpoints"; }

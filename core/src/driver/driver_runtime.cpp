@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "pbms/driver/stage_kind.hpp"
+#include "pbms/driver/stop_request.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/mpmd.hpp"
 
@@ -429,6 +430,7 @@ int run_driver(int argc, char** argv, const DriverInfo& info, const StageRegistr
     }
   }
   for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, on_crash_signal);
+  install_stop_handlers();
 
   mpi::Environment env(argc, argv);
   std::unique_ptr<DriverRuntime> runtime;

@@ -20,7 +20,24 @@ std::uint64_t digest(const std::string& text) {
 
 }  // namespace
 
-StageCheckpoints::StageCheckpoints(StageContext& ctx) : ctx_(ctx) {}
+StageCheckpoints::StageCheckpoints(StageContext& ctx) : ctx_(ctx) {
+  if (enabled()) window_.emplace();
+}
+
+bool StageCheckpoints::stop_agreed(std::int64_t step) {
+  if (!enabled() || step % kStopCheckEvery != 0) return false;
+  int mine = stop_requested() ? 1 : 0, any = 0;
+  mpi::check(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, ctx_.comm()), "MPI_Allreduce");
+  return any != 0;
+}
+
+std::string StageCheckpoints::stopped_message(std::int64_t step, std::int64_t total,
+                                              const std::string& file) {
+  return fmt::format(
+      "stopped by a signal (SIGTERM or SIGUSR1: a wall-time limit?) after step {} of {}; the "
+      "checkpoint {} holds the run",
+      step, total, file);
+}
 
 std::string StageCheckpoints::identity() const {
   std::string text = yaml_text(ctx_.params());
@@ -48,8 +65,8 @@ bool StageCheckpoints::due(std::int64_t step, std::int64_t total) {
   return yes != 0;
 }
 
-void StageCheckpoints::write(std::int64_t step, double sim_time_ps,
-                             const CheckpointArchive& archive) {
+std::string StageCheckpoints::write(std::int64_t step, double sim_time_ps,
+                                    const CheckpointArchive& archive) {
   const std::string relative = fmt::format("{}/checkpoints/step_{:012d}.h5", ctx_.stage(), step);
   if (ctx_.rank() == 0) {
     archive.write(ctx_.run_dir() / relative, identity());
@@ -57,6 +74,7 @@ void StageCheckpoints::write(std::int64_t step, double sim_time_ps,
   }
   mpi::check(MPI_Barrier(ctx_.comm()), "MPI_Barrier");
   last_ = std::chrono::steady_clock::now();
+  return relative;
 }
 
 }  // namespace pbms

@@ -6,9 +6,11 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "pbms/driver/stage_kind.hpp"
+#include "pbms/driver/stop_request.hpp"
 #include "pbms/io/checkpoint_archive.hpp"
 
 namespace pbms {
@@ -27,8 +29,17 @@ class StageCheckpoints {
   // N steps, or every T minutes of wall time as rank 0's clock says). Never
   // after the last step: the stage's results follow at once.
   [[nodiscard]] bool due(std::int64_t step, std::int64_t total);
-  // Collective; rank 0 writes `archive` and tells the coupler.
-  void write(std::int64_t step, double sim_time_ps, const CheckpointArchive& archive);
+  // Collective; rank 0 writes `archive` and tells the coupler. Returns the
+  // file, relative to the run directory.
+  std::string write(std::int64_t step, double sim_time_ps, const CheckpointArchive& archive);
+
+  // Collective: whether a rank has been asked to stop (stop_request.hpp),
+  // checked every kStopCheckEvery steps; never when checkpoints are off.
+  [[nodiscard]] bool stop_agreed(std::int64_t step);
+  static constexpr std::int64_t kStopCheckEvery = 10;
+  // The failure a stopped stage ends with: after which step, and the file.
+  [[nodiscard]] static std::string stopped_message(std::int64_t step, std::int64_t total,
+                                                   const std::string& file);
 
   // Whose state a checkpoint holds: the stage, its kind and a digest of its
   // parameters and materials.
@@ -37,6 +48,7 @@ class StageCheckpoints {
  private:
   StageContext& ctx_;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::optional<StopWindow> window_;  // open while checkpoints are on
 };
 
 }  // namespace pbms
