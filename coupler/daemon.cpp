@@ -397,7 +397,10 @@ class Daemon {
     std::cerr << (stopped ? "pbms: stopped: " : "pbms: error: ") << text << "\n" << std::flush;
     if (file_log_) file_log_->error(text);
     if (stopped) {
-      record_->failed(program, rank, stage, step, text, "stopped");
+      record_->failed(
+          program, rank, stage, step,
+          fmt::format("{}; to go on from there: ./pbms run {} --resume", message, opt_.config),
+          "stopped");
       throw JobStopped{};
     }
     try {

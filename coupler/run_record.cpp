@@ -98,17 +98,14 @@ std::string existing_run_refusal(const config::Workflow& wf, ExistingRun existin
   std::string out = e.format();
   out += fmt::format("\n  to replace it:   ./pbms run {} --overwrite", wf.source_file);
   out += fmt::format("\n  to keep both:    give this run a new run.name in {}", wf.source_file);
-  if (resumable.empty()) {
-    out +=
-        "\n  (--resume does not apply: no stage of this workflow resumes; only "
-        "fit_dpd_potential stages do)";
-  } else {
-    out += fmt::format(
-        "\n  to continue it:  ./pbms run {} --resume (stage{} {} replay{} what {} "
-        "recorded there)",
-        wf.source_file, resumable.size() == 1 ? "" : "s", fmt::join(resumable, ", "),
-        resumable.size() == 1 ? "s" : "", resumable.size() == 1 ? "it" : "they");
-  }
+  out += fmt::format(
+      "\n  to continue it:  ./pbms run {} --resume (its finished stages are kept{}; a dpd_run "
+      "goes on from its newest checkpoint, others start again)",
+      wf.source_file,
+      resumable.empty()
+          ? ""
+          : fmt::format(", and {} replay{} what {} recorded", fmt::join(resumable, ", "),
+                        resumable.size() == 1 ? "s" : "", resumable.size() == 1 ? "it" : "they"));
   return out;
 }
 

@@ -228,20 +228,19 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
              impact ? &*impact : nullptr,
              tension ? &*tension : nullptr};
 
-  // Checkpoints hold no trajectory yet: a run writing frames along the
-  // way, or one on a grid, writes none.
+  // Checkpoints do not hold a grid model's state yet.
   StageCheckpoints checkpoints(ctx);
-  const bool checkpointed = checkpoints.enabled() && !grid_step && p.particles_every == 0;
+  const bool checkpointed = checkpoints.enabled() && !grid_step;
   if (checkpoints.enabled() && !checkpointed) {
     ctx.results().add_warning(
-        "no checkpoints written: checkpoints of a dpd_run do not yet hold a grid model's state or "
-        "H5MD frames written along the way (particles_every > 0); a resumed run starts this "
-        "stage again");
+        "no checkpoints written: checkpoints of a dpd_run do not yet hold a grid model's state; "
+        "a resumed run starts this stage again");
   }
   ThermoState initial;
   std::int64_t first_step = 1;
   if (checkpointed && checkpoints.resuming()) {
     first_step = run.load(checkpoints.resume_archive(), initial) + 1;
+    trajectory.resume(engine, first_step - 1);
   } else {
     const ThermoState first = run.sample(0);
     initial = first.potential != 0.0 ? first : engine.thermo(true);

@@ -39,20 +39,34 @@ std::vector<double> DpdTrajectory::local_rows(const DpdEngine& engine) const {
   return rows;
 }
 
+H5mdWriter::Options DpdTrajectory::options(const DpdEngine& engine) const {
+  H5mdWriter::Options o;
+  o.path = file_.string();
+  o.creator_version = "dpd_driver";
+  o.periodic = engine.domain().box().periodic;
+  o.velocities = true;
+  o.forces = forces_;
+  o.internal_energy = internal_energy_;
+  return o;
+}
+
+void DpdTrajectory::resume(const DpdEngine& engine, std::int64_t last_step) {
+  int there = std::filesystem::exists(file_) ? 1 : 0;
+  MPI_Bcast(&there, 1, MPI_INT, 0, comm_);
+  if (there == 0) return;  // no frame before the checkpoint: the first write creates it
+  const DpdParticles& q = engine.particles();
+  const std::vector<std::int64_t> ids(q.id.begin(),
+                                      q.id.begin() + static_cast<std::ptrdiff_t>(engine.owned()));
+  h5md_ = H5mdWriter::reopen(comm_, options(engine), ids, last_step);
+}
+
 void DpdTrajectory::write_frame(const DpdEngine& engine, std::int64_t step, double dt) {
   const DpdParticles& q = engine.particles();
   const OrthogonalBox& box = engine.domain().box();
   const auto n = static_cast<std::ptrdiff_t>(engine.owned());
   const std::vector<std::int64_t> ids(q.id.begin(), q.id.begin() + n);
   if (!h5md_) {
-    H5mdWriter::Options o;
-    o.path = file_.string();
-    o.creator_version = "dpd_driver";
-    o.periodic = box.periodic;
-    o.velocities = true;
-    o.forces = forces_;
-    o.internal_energy = internal_energy_;
-    h5md_ = std::make_unique<H5mdWriter>(comm_, o, ids,
+    h5md_ = std::make_unique<H5mdWriter>(comm_, options(engine), ids,
                                          std::vector<int>(q.type.begin(), q.type.begin() + n));
   }
   const std::array<double, 3> edges{box.length(0), box.length(1), box.length(2)};

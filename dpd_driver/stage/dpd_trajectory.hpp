@@ -21,6 +21,10 @@ class DpdTrajectory {
  public:
   DpdTrajectory(MPI_Comm comm, std::filesystem::path file, bool forces, bool internal_energy);
 
+  // Collective, for a run resumed from a checkpoint after `last_step`:
+  // goes on with the file the interrupted run wrote, its later frames
+  // dropped (H5mdWriter::reopen).
+  void resume(const DpdEngine& engine, std::int64_t last_step);
   // Collective: one frame; the first creates the file.
   void write_frame(const DpdEngine& engine, std::int64_t step, double dt);
   // Collective: every rank keeps the whole state, sorted by id.
@@ -31,6 +35,7 @@ class DpdTrajectory {
   // id, type, x, v, then f and u when written: this rank's rows.
   [[nodiscard]] std::vector<double> local_rows(const DpdEngine& engine) const;
   [[nodiscard]] std::size_t width() const;
+  [[nodiscard]] H5mdWriter::Options options(const DpdEngine& engine) const;
 
   MPI_Comm comm_;
   std::filesystem::path file_;

@@ -7,8 +7,9 @@ source "$(dirname "$0")/lib.sh"
 # file under its temporary name, the manifest listing the checkpoints up to
 # step 800 only; `./pbms run --resume` must go on from step 800 and end:
 #  - on the same ranks, bitwise as the whole run: every summary.yaml value
-#    (timings aside), every results.h5 dataset of the stage, and the final
-#    positions and velocities;
+#    (timings aside), every results.h5 dataset of the stage, and every H5MD
+#    frame (one every 50 steps: the frames after step 800 that the killed
+#    run wrote are dropped and written again);
 #  - on 1 rank instead of 2 (a copy of the killed run), to the rank tests'
 #    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh);
 # for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
@@ -111,6 +112,14 @@ if exact:
                     bad.append(f"results.h5 {path}/{k} differs")
         walk(fa[stage], fb[stage], stage)
 with h5py.File(f"{a}/{stage}/particles.h5md") as fa, h5py.File(f"{b}/{stage}/particles.h5md") as fb:
+    steps_a, steps_b = fa["particles/all/position/step"][()], fb["particles/all/position/step"][()]
+    if not np.array_equal(steps_a, steps_b):
+        bad.append(f"H5MD frames at steps {list(steps_b)}, the whole run's at {list(steps_a)}")
+    elif exact:
+        for q in ("position", "velocity"):
+            if not np.array_equal(fa[f"particles/all/{q}/value"][()], fb[f"particles/all/{q}/value"][()]):
+                bad.append(f"H5MD {q} frames differ")
+        print(f"  H5MD: the same {len(steps_a)} frames, bit for bit")
     for q, tol in (("positions", xtol), ("velocities", vtol)):
         field = {"positions": "position", "velocities": "velocity"}[q]
         x, y = fa[f"particles/all/{field}/value"][-1], fb[f"particles/all/{field}/value"][-1]

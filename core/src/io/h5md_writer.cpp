@@ -1,5 +1,7 @@
 #include "pbms/io/h5md_writer.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <tuple>
@@ -122,6 +124,96 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
   const auto block_species = blocks_.to_block(species.data());
   write_fixed(all.id(), "species", H5T_NATIVE_INT, H5T_STD_I32LE, block_species.data(),
               blocks_.count(), blocks_.begin(), n_total_, dxpl_.id());
+}
+
+H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids, Reopen)
+    : comm_(comm),
+      rank_(rank_of(comm)),
+      opt_(opt),
+      rows_(comm, ids),
+      blocks_(comm, rows_.total()),
+      n_total_(rows_.total()) {
+  blocks_.route(rows_.rows(ids));
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  file_ = h5::open_read_write(opt.path, comm);
+  dxpl_ = h5::Handle(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
+  if (size > 1) H5Pset_dxpl_mpio(dxpl_.id(), H5FD_MPIO_COLLECTIVE);
+}
+
+H5mdWriter::TimeSeries H5mdWriter::cut_series(hid_t parent, const std::string& name,
+                                              hsize_t frames) {
+  TimeSeries ts;
+  ts.group = h5::Handle(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose);
+  for (auto [handle, dname] :
+       {std::pair{&ts.step, "step"}, std::pair{&ts.time, "time"}, std::pair{&ts.value, "value"}}) {
+    *handle = h5::Handle(H5Dopen2(ts.group.id(), dname, H5P_DEFAULT), H5Dclose);
+    h5::Handle space(H5Dget_space(handle->id()), H5Sclose);
+    std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space.id())));
+    H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
+    dims[0] = std::min(dims[0], frames);
+    H5Dset_extent(handle->id(), dims.data());
+  }
+  return ts;
+}
+
+std::unique_ptr<H5mdWriter> H5mdWriter::reopen(MPI_Comm comm, const Options& opt,
+                                               const std::vector<int64_t>& ids, int64_t last_step) {
+  // The frames to keep: those at or before last_step (steps only grow). The
+  // cut is made by one process (parallel HDF5 does not shrink datasets
+  // reliably), then the file is opened by all.
+  long long keep = 0;
+  std::string problem;
+  if (rank_of(comm) == 0) {
+    try {
+      h5::Handle f = h5::open_read_write(opt.path);
+      h5::Handle all(H5Gopen2(f.id(), "particles/all", H5P_DEFAULT), H5Gclose);
+      h5::Handle steps(H5Dopen2(all.id(), "position/step", H5P_DEFAULT), H5Dclose);
+      h5::Handle space(H5Dget_space(steps.id()), H5Sclose);
+      std::vector<int64_t> written(
+          static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id())));
+      if (!written.empty()) {
+        H5Dread(steps.id(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, written.data());
+      }
+      while (keep < static_cast<long long>(written.size()) &&
+             written[static_cast<std::size_t>(keep)] <= last_step) {
+        ++keep;
+      }
+      const auto frames = static_cast<hsize_t>(keep);
+      h5::Handle box(H5Gopen2(all.id(), "box", H5P_DEFAULT), H5Gclose);
+      cut_series(box.id(), "edges", frames);
+      for (const char* name : {"position", "velocity", "force", "internal_energy"}) {
+        if (H5Lexists(all.id(), name, H5P_DEFAULT) > 0) cut_series(all.id(), name, frames);
+      }
+    } catch (const std::exception& e) {
+      problem = e.what();
+    }
+  }
+  int length = static_cast<int>(problem.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  problem.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm);
+  if (!problem.empty()) throw Error(fmt::format("H5MD file '{}': {}", opt.path, problem));
+  MPI_Bcast(&keep, 1, MPI_LONG_LONG, 0, comm);
+
+  std::unique_ptr<H5mdWriter> w(new H5mdWriter(comm, opt, ids, Reopen{}));
+  h5::Handle all(H5Gopen2(w->file_.id(), "particles/all", H5P_DEFAULT), H5Gclose);
+  {
+    h5::Handle ids_ds(H5Dopen2(all.id(), "id", H5P_DEFAULT), H5Dclose);
+    h5::Handle ids_space(H5Dget_space(ids_ds.id()), H5Sclose);
+    if (static_cast<hsize_t>(H5Sget_simple_extent_npoints(ids_space.id())) != w->n_total_) {
+      throw Error(fmt::format("H5MD file '{}' holds other particles than this run", opt.path));
+    }
+  }
+  const auto frames = static_cast<hsize_t>(keep);
+  h5::Handle box(H5Gopen2(all.id(), "box", H5P_DEFAULT), H5Gclose);
+  w->edges_ = cut_series(box.id(), "edges", frames);
+  w->position_ = cut_series(all.id(), "position", frames);
+  if (opt.velocities) w->velocity_ = cut_series(all.id(), "velocity", frames);
+  if (opt.forces) w->force_ = cut_series(all.id(), "force", frames);
+  if (opt.internal_energy) w->internal_energy_ = cut_series(all.id(), "internal_energy", frames);
+  w->frames_ = keep;
+  return w;
 }
 
 H5mdWriter::TimeSeries H5mdWriter::make_series(hid_t parent, const std::string& name, int rank_dims,

@@ -51,6 +51,15 @@ Handle create_truncate(const std::string& path, MPI_Comm comm) {
   return Handle(f, size > 1 ? close_collective_file : H5Fclose);
 }
 
+Handle open_read_write(const std::string& path, MPI_Comm comm) {
+  Handle fapl = file_access(comm);
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.id());
+  if (f < 0) throw Error(fmt::format("cannot open HDF5 file '{}' to write", path));
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  return Handle(f, size > 1 ? close_collective_file : H5Fclose);
+}
+
 namespace {
 constexpr const char* kUpdateSuffix = ".tmp";
 

@@ -52,6 +52,8 @@ Handle open_or_create(const std::string& path);
 // survive would leave such a file open until MPI_Finalize; none writes one
 // today.
 Handle create_truncate(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
+// An existing file opened to write, collectively over `comm` as create_truncate.
+Handle open_read_write(const std::string& path, MPI_Comm comm = MPI_COMM_SELF);
 // The group at `path` (slash separated), creating missing parents.
 Handle require_group(hid_t parent, const std::string& path);
 void delete_link_if_exists(hid_t parent, const std::string& name);
