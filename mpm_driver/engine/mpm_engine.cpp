@@ -1,10 +1,13 @@
 #include "engine/mpm_engine.hpp"
 
 #include <algorithm>
+
+#include <fmt/format.h>
 #include <limits>
 #include <numeric>
 
 #include "engine/point_migration.hpp"
+#include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
 
 namespace pbms::mpm {
@@ -92,6 +95,83 @@ void MpmEngine::step(double dt) {
 void MpmEngine::migrate() {
   ++steps_;
   if (ranks_ > 1) migrate_points(comm_, partition_, model_.points);
+}
+
+MpmEngine::State MpmEngine::gather_state() const {
+  const grid::MaterialPoints& p = model_.points;
+  std::vector<double> mine;
+  mine.reserve(p.size() * kStateWidth);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    mine.push_back(static_cast<double>(p.id[i]));
+    mine.insert(mine.end(), p.x[i].begin(), p.x[i].end());
+    mine.insert(mine.end(), p.v[i].begin(), p.v[i].end());
+    mine.insert(mine.end(), {p.mass[i], p.volume0[i]});
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) mine.push_back(p.F[i](r, c));
+    }
+    const grid::MaterialPointState& st = p.state[i];
+    mine.insert(mine.end(), st.stress.voigt.begin(), st.stress.voigt.end());
+    mine.insert(mine.end(),
+                {st.density, st.plastic_strain, st.internal_energy,
+                 static_cast<double>(p.material[i]), static_cast<double>(p.groups[i]), p.work[i]});
+  }
+  State out;
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(counts.size());
+  mpi::check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
+  int total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = total;
+    total += counts[r];
+    out.counts.push_back(static_cast<double>(counts[r] / static_cast<int>(kStateWidth)));
+  }
+  out.rows.resize(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
+  mpi::check(MPI_Gatherv(mine.data(), count, MPI_DOUBLE, out.rows.data(), counts.data(),
+                         offsets.data(), MPI_DOUBLE, 0, comm_),
+             "MPI_Gatherv");
+  return out;
+}
+
+void MpmEngine::restore_state(const State& state, std::int64_t steps) {
+  const std::size_t n = state.rows.size() / kStateWidth;
+  if (state.rows.size() % kStateWidth != 0 || static_cast<std::int64_t>(n) != total_points_) {
+    throw Error(
+        fmt::format("MPM engine: the checkpoint holds {} points, this run {}", n, total_points_));
+  }
+  std::vector<std::size_t> mine;
+  if (static_cast<int>(state.counts.size()) == ranks_) {
+    std::size_t from = 0;
+    for (int r = 0; r < rank_; ++r) from += static_cast<std::size_t>(state.counts[r]);
+    const auto count = static_cast<std::size_t>(state.counts[rank_]);
+    for (std::size_t k = from; k < from + count; ++k) mine.push_back(k);
+  } else {
+    for (std::size_t k = 0; k < n; ++k) {
+      const double* r = &state.rows[k * kStateWidth];
+      if (partition_.owner_of({r[1], r[2], r[3]}) == rank_) mine.push_back(k);
+    }
+    std::sort(mine.begin(), mine.end(), [&](std::size_t a, std::size_t b) {
+      return state.rows[a * kStateWidth] < state.rows[b * kStateWidth];
+    });
+  }
+  grid::MaterialPoints points;
+  for (const std::size_t k : mine) {
+    const double* r = &state.rows[k * kStateWidth];
+    grid::MaterialPointState st;
+    std::copy(r + 18, r + 24, st.stress.voigt.begin());
+    st.density = r[24];
+    st.plastic_strain = r[25];
+    st.internal_energy = r[26];
+    points.add(static_cast<std::int64_t>(r[0]), {r[1], r[2], r[3]}, r[8], st,
+               static_cast<int>(r[27]), static_cast<std::uint32_t>(r[28]));
+    points.v.back() = {r[4], r[5], r[6]};
+    points.mass.back() = r[7];
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) points.F.back()(a, b) = r[9 + 3 * a + b];
+    }
+    points.work.back() = r[29];
+  }
+  model_.points = std::move(points);
+  steps_ = steps;
 }
 
 double MpmEngine::stable_time_step() const {

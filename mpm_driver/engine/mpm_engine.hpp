@@ -44,6 +44,24 @@ class MpmEngine {
   }
   void migrate();
 
+  // What a checkpoint holds of the engine: each rank's points in the order
+  // it stores them, rank after rank, as rows of kStateWidth (id, x, v,
+  // mass, volume0, F, stress, density, plastic strain, internal energy,
+  // material, groups, work), how many each rank holds, and the step count.
+  // Rank 0 gets them (collective).
+  static constexpr std::size_t kStateWidth = 30;
+  struct State {
+    std::vector<double> rows;
+    std::vector<double> counts;  // per rank
+  };
+  [[nodiscard]] State gather_state() const;
+  // Takes `state` (every rank the same) as the points after `steps` steps.
+  // On as many ranks as wrote it each rank takes back its own points in
+  // their order, so the nodal sums run as before and the run goes on bit
+  // for bit; on another rank count the points go to the owners of their
+  // cells in id order, and the sums differ by round-off.
+  void restore_state(const State& state, std::int64_t steps);
+
   // The largest stable time step over every rank's points (CFL bound).
   [[nodiscard]] double stable_time_step() const;
 

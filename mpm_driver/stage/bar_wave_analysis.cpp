@@ -137,4 +137,26 @@ void BarWaveAnalysis::report(StageResults& r, bool metal, const std::string& sta
   r.attributes["profile_time"] = fmt::format("{:.10g}", profile_t_);
 }
 
+void BarWaveAnalysis::save(CheckpointArchive& a) const {
+  a.put("wave/scalars",
+        std::vector<double>{static_cast<double>(plateau_step_), static_cast<double>(profile_step_),
+                            plateau_, rms_, variation_, profile_t_});
+  a.put("wave/front_t", front_t_);
+  a.put("wave/front_s", front_s_);
+  a.put("wave/profile", profile_);
+}
+
+void BarWaveAnalysis::load(const CheckpointArchive& a) {
+  const auto& s = a.get("wave/scalars");
+  plateau_step_ = static_cast<std::int64_t>(s.at(0));
+  profile_step_ = static_cast<std::int64_t>(s.at(1));
+  plateau_ = s.at(2);
+  rms_ = s.at(3);
+  variation_ = s.at(4);
+  profile_t_ = s.at(5);
+  front_t_ = a.get("wave/front_t");
+  front_s_ = a.get("wave/front_s");
+  profile_ = a.get("wave/profile");
+}
+
 }  // namespace pbms::mpm

@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "engine/mpm_engine.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 #include "wave_front.hpp"
 
@@ -44,6 +45,9 @@ class BarWaveAnalysis {
   void after_step(const MpmEngine& engine, std::int64_t step, double t);
   // Rank 0: the scalars and the front and profile tables.
   void report(StageResults& r, bool metal_units, const std::string& stage) const;
+  // What it has measured so far, for a checkpoint; and back.
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   // The bar's points as rows (id, x, sigma_xx, volume) in id order on rank 0.

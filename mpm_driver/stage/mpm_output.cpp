@@ -3,7 +3,8 @@
 namespace pbms::mpm {
 
 MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
-                     const std::filesystem::path& stage_dir, const std::string& stage)
+                     const std::filesystem::path& stage_dir, const std::string& stage,
+                     bool resuming)
     : params_(params), stage_(stage) {
   const auto& g = engine.model().grid;
   for (std::size_t a = 0; a < 3; ++a) edges_[a] = g.upper()[a] - g.origin()[a];
@@ -17,13 +18,21 @@ MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
     o.metal_units = params.metal_units;
     o.velocities = true;
     const auto& ids = engine.points().id;
-    particles_ =
-        std::make_unique<H5mdWriter>(engine.comm(), o, ids, std::vector<int>(ids.size(), 0));
+    particle_options_ = o;
+    if (!resuming) {
+      particles_ =
+          std::make_unique<H5mdWriter>(engine.comm(), o, ids, std::vector<int>(ids.size(), 0));
+    }
   }
   if (params.grid_every > 0) {
     grid_ = std::make_unique<GridFieldWriter>(engine.comm(), (stage_dir / "grid").string(), g,
                                               engine.owned_nodes());
   }
+}
+
+void MpmOutput::resume(const MpmEngine& engine, std::int64_t last_step) {
+  if (params_.particles_every <= 0) return;
+  particles_ = H5mdWriter::reopen(engine.comm(), particle_options_, engine.points().id, last_step);
 }
 
 void MpmOutput::write(const MpmEngine& engine, std::int64_t step, double t) {

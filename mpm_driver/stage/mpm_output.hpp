@@ -18,9 +18,15 @@ namespace pbms::mpm {
 class MpmOutput {
  public:
   // Files go to `stage_dir`; `stage` names it in files().
+  // A run that will resume() creates no particle file: it goes on with one.
   MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
-            const std::filesystem::path& stage_dir, const std::string& stage);
+            const std::filesystem::path& stage_dir, const std::string& stage,
+            bool resuming = false);
 
+  // Collective, for a run resumed from a checkpoint after `last_step`:
+  // goes on with the particle file the interrupted run wrote, its later
+  // frames dropped (H5mdWriter::reopen).
+  void resume(const MpmEngine& engine, std::int64_t last_step);
   // The frames due at this step. Collective.
   void write(const MpmEngine& engine, std::int64_t step, double t);
   // The files written, relative to the run directory.
@@ -33,6 +39,7 @@ class MpmOutput {
   MpmRunParams params_;
   std::string stage_;
   std::array<double, 3> edges_{};
+  H5mdWriter::Options particle_options_;
   std::unique_ptr<H5mdWriter> particles_;
   std::unique_ptr<GridFieldWriter> grid_;
 };

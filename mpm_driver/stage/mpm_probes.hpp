@@ -44,6 +44,7 @@ class MpmProbes {
                                            const std::vector<double>& maxima) const;
   // The starting centres of mass need one reduced sample at step 0.
   void set_reference(const std::vector<double>& values);
+  [[nodiscard]] const std::vector<double>& reference() const { return reference_; }
 
   [[nodiscard]] bool has_energy() const { return energy_column_ >= 0; }
   [[nodiscard]] int energy_total_column() const { return energy_column_; }

@@ -13,6 +13,8 @@
 #include "probe_series.hpp"
 #include "rod_tension_analysis.hpp"
 
+#include "pbms/driver/stage_checkpoints.hpp"
+
 namespace pbms::mpm {
 namespace {
 
@@ -45,23 +47,66 @@ void MpmRunStage::run(StageContext& ctx) {
   if (params.wave_front) bar.emplace(*params.wave_front, engine, dt, steps, ctx.stage());
   std::optional<RodTensionAnalysis> tension;
   if (params.tension) tension.emplace(*params.tension, engine, params.metal_units, ctx.stage());
-  MpmOutput output(engine, params, ctx.stage_dir(), ctx.stage());
+  // Checkpoints do not hold the XDMF grid file yet.
+  StageCheckpoints checkpoints(ctx);
+  const bool checkpointed = checkpoints.enabled() && params.grid_every <= 0;
+  if (checkpoints.enabled() && !checkpointed) {
+    ctx.results().add_warning(
+        "no checkpoints written: checkpoints of an mpm_run do not yet go on with a grid file "
+        "(grid_every > 0); a resumed run starts this stage again");
+  }
+  const bool resuming = checkpointed && checkpoints.resuming();
+  MpmOutput output(engine, params, ctx.stage_dir(), ctx.stage(), resuming);
 
+  const auto save = [&] {
+    CheckpointArchive a;
+    const MpmEngine::State state = engine.gather_state();
+    a.put("engine/points", state.rows);
+    a.put("engine/rank_counts", state.counts);
+    a.put("engine/step", static_cast<double>(engine.step_count()));
+    probes.save(a);
+    if (bar) bar->save(a);
+    if (tension) tension->save(a);
+    return a;
+  };
   // A run of 0 steps still samples and writes the initial state.
   const auto sample = [&](std::int64_t n, double t) {
     probes.sample(engine, n, t);
     if (bar) bar->sample(engine, t);
     if (tension) tension->sample(engine, t);
   };
-  sample(0, 0.0);
-  output.write(engine, 0, 0.0);
-  for (std::int64_t n = 1; n <= steps; ++n) {
+  std::int64_t first_step = 1;
+  if (resuming) {
+    const CheckpointArchive a = checkpoints.resume_archive();
+    const auto step = static_cast<std::int64_t>(a.scalar("engine/step"));
+    engine.restore_state({a.get("engine/points"), a.get("engine/rank_counts")}, step);
+    probes.load(a);
+    if (bar) bar->load(a);
+    if (tension) tension->load(a);
+    output.resume(engine, step);
+    first_step = step + 1;
+  } else {
+    sample(0, 0.0);
+    output.write(engine, 0, 0.0);
+  }
+  for (std::int64_t n = first_step; n <= steps; ++n) {
     ramp_point_velocities(engine.model(), engine.boundary_conditions(), n, dt);
     engine.step(dt);
     const double t = static_cast<double>(n) * dt;
     if (n % params.sample_every == 0 || n == steps) sample(n, t);
     output.write(engine, n, t);
     if (bar) bar->after_step(engine, n, t);
+    const bool stop = checkpoints.stop_agreed(n) && n < steps;
+    if (checkpointed && (stop || checkpoints.due(n, steps))) {
+      const std::string file = checkpoints.write(n, t, save());
+      if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, steps, file));
+    }
+    if (stop) {
+      throw StageFailure(fmt::format(
+          "stopped by a signal after step {} of {}; this stage writes no checkpoints, and a "
+          "resumed run starts it again",
+          n, steps));
+    }
     ctx.progress(n, steps, t, "mpm");
   }
 

@@ -70,4 +70,22 @@ void ProbeSeries::report(StageResults& r, const MpmRunParams& params,
       time_unit);
 }
 
+void ProbeSeries::save(CheckpointArchive& a) const {
+  a.put("probes/step", step_);
+  a.put("probes/time", time_);
+  a.put("probes/reference", probes_.reference());
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    a.put(fmt::format("probes/column_{}", c), columns_[c]);
+  }
+}
+
+void ProbeSeries::load(const CheckpointArchive& a) {
+  step_ = a.get("probes/step");
+  time_ = a.get("probes/time");
+  if (!a.get("probes/reference").empty()) probes_.set_reference(a.get("probes/reference"));
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    columns_[c] = a.get(fmt::format("probes/column_{}", c));
+  }
+}
+
 }  // namespace pbms::mpm

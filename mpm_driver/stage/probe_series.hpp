@@ -11,6 +11,7 @@
 #include "engine/mpm_engine.hpp"
 #include "mpm_probes.hpp"
 #include "mpm_run_params.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::mpm {
@@ -22,6 +23,9 @@ class ProbeSeries {
   // Collective. The sample at step 0 also fixes the probes' references.
   void sample(const MpmEngine& engine, std::int64_t step, double t);
   void report(StageResults& r, const MpmRunParams& params, const std::string& stage) const;
+  // The samples and references, for a checkpoint; and back.
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   MpmProbes probes_;

@@ -165,4 +165,28 @@ void RodTensionAnalysis::report(StageResults& r, const std::string& stage) const
   r.attributes["cross_section_A2"] = fmt::format("{:.6g}", area0_);
 }
 
+void RodTensionAnalysis::save(CheckpointArchive& a) const {
+  a.put("tension/measures",
+        std::vector<double>{length0_, area0_, width0_, density_, gauge_distance0_});
+  a.put("tension/time", time_);
+  a.put("tension/strain", strain_);
+  a.put("tension/stress", stress_);
+  a.put("tension/gauge_strain", gauge_strain_);
+  a.put("tension/gauge_stress", gauge_stress_);
+}
+
+void RodTensionAnalysis::load(const CheckpointArchive& a) {
+  const auto& m = a.get("tension/measures");
+  length0_ = m.at(0);
+  area0_ = m.at(1);
+  width0_ = m.at(2);
+  density_ = m.at(3);
+  gauge_distance0_ = m.at(4);
+  time_ = a.get("tension/time");
+  strain_ = a.get("tension/strain");
+  stress_ = a.get("tension/stress");
+  gauge_strain_ = a.get("tension/gauge_strain");
+  gauge_stress_ = a.get("tension/gauge_stress");
+}
+
 }  // namespace pbms::mpm

@@ -15,6 +15,7 @@
 
 #include "engine/mpm_engine.hpp"
 #include "pbms/analysis/tension_test.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::mpm {
@@ -40,6 +41,9 @@ class RodTensionAnalysis {
   // The results of analysis::TensionTest, and the cross-section (the same on
   // every rank).
   void report(StageResults& r, const std::string& stage) const;
+  // Its samples and starting measures, for a checkpoint; and back.
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   // The rod's extents along x, y, z, each plus the point spacing along it,

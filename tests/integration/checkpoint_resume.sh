@@ -13,7 +13,10 @@ source "$(dirname "$0")/lib.sh"
 #  - on 1 rank instead of 2 (a copy of the killed run), to the rank tests'
 #    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh);
 # for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
-# crystal (shardlow_dpde) and a rigid flyer's impact. The pull without a
+# crystal (shardlow_dpde) and a rigid flyer's impact; and mpm_run (the
+# colliding disks, 1,000 steps on 1 rank, resumed also on 2: round-off
+# 1e-10 as mpm_ranks.sh) for an elastic material with DDMP gradients, J2
+# with plastic flow and an ideal gas. The pull without a
 # checkpoint: block ends bitwise as the whole run that wrote them: writing
 # one disturbs nothing. SIGTERM to `./pbms run` during the pull: the job
 # writes a checkpoint at the next step boundary and ends non-zero within
@@ -49,6 +52,30 @@ stage["groups"] = [{"name": "near", "region": {"style": "block", "lo": [10, -1, 
 stage["motion"] = [{"group": "flyer", "kind": "rigid_body", "velocity": [5, 0, 0]}]
 stage["impact"] = {"near_slab": "near", "far_slab": "far", "axis": "x"}
 stage["probes"] = [{"name": "T", "kind": "temperature"}]
+# MPM: the colliding disks of mpm_disks_200.yaml for 1,000 steps, on one
+# rank (the resume on another goes to 2): elastic with DDMP gradients, J2
+# with plastic flow, ideal gas.
+disks = yaml.safe_load(open(sys.argv[1].replace("checkpoint_dpd.yaml", "mpm_disks_200.yaml")))
+disks["launch"] = {"mpm": 1}
+disks["checkpoint"] = base["checkpoint"]
+stage = disks["stages"][0]
+stage.pop("grid_every")
+stage.update({"duration": 2.0, "particles_every": 50})
+mpm_cases = {}
+elastic = copy.deepcopy(disks)
+elastic["stages"][0].update({"gradient": "ddmp", "ddmp_blend": "face_vanishing"})
+mpm_cases["mpm_elastic"] = elastic
+j2 = copy.deepcopy(disks)
+j2["materials"]["disk_material"] = {"kind": "j2_plasticity", "density": 1000, "youngs_modulus": 1000,
+                                    "poisson_ratio": 0.3, "yield_stress": 5, "hardening_modulus": 50}
+mpm_cases["mpm_j2"] = j2
+gas = copy.deepcopy(disks)
+gas["materials"]["disk_material"] = {"kind": "ideal_gas", "density": 1000, "gamma": 1.4}
+mpm_cases["mpm_gas"] = gas
+for case, cfg in mpm_cases.items():
+    write(f"{case}_whole", cfg)
+    write(f"{case}_killed", cfg)
+    write(f"{case}_other_ranks", cfg)
 plain = copy.deepcopy(pull)
 plain.pop("checkpoint")
 write("pull_plain", plain)
@@ -59,9 +86,10 @@ for case, cfg in (("pull", pull), ("dpde", dpde), ("impact", impact)):
 write("pull_signalled", pull)
 PYEOF
 
-# Runs CASE_killed, holds the checkpoint write after step 900 and kills a rank.
+# Runs CASE_killed, holds the checkpoint write after step 900 and kills a
+# rank of PROGRAM: run_killed CASE STAGE [PROGRAM]
 run_killed() {
-  local case=$1 stage=$2 run="$PWD/runs/${1}_killed"
+  local case=$1 stage=$2 program=${3:-dpd_driver} run="$PWD/runs/${1}_killed"
   local partial="$run/$stage/checkpoints/step_000000000900.h5.partial"
   PBMS_TEST_CHECKPOINT_PAUSE="step_000000000900:120" "$PBMS" run "${case}_killed.yaml" \
     > "${case}_killed.out" 2>&1 &
@@ -72,7 +100,7 @@ run_killed() {
     sleep 0.1
   done
   [ -f "$partial" ] || fail "$case: no checkpoint write after step 900 to kill"
-  kill -9 "$(job_process dpd_driver)"
+  kill -9 "$(job_process "$program")"
   timeout 60 tail --pid=$pid -f /dev/null || fail "$case: the job did not end after the kill"
   ! wait $pid || fail "$case: the killed job exited 0"
   [ -f "$partial" ] || fail "$case: the half-written checkpoint is gone"
@@ -148,6 +176,30 @@ for spec in pull:pull dpde:dpde impact:impact; do
     { cat "${case}_one_rank.out"; fail "$case: the resume on 1 rank"; }
   compare "${case}_whole" "${case}_one_rank" "$stage" 1e-9 1e-10 ||
     fail "$case: resumed on 1 rank, beyond round-off"
+done
+
+for case in mpm_elastic mpm_j2 mpm_gas; do
+  echo "== $case"
+  "$PBMS" run "${case}_whole.yaml" > "${case}_whole.out" 2>&1 || { cat "${case}_whole.out"; fail "$case: the whole run"; }
+  run_killed "$case" disks mpm_driver
+  cp -a "runs/${case}_killed" "runs/${case}_other_ranks"
+  "$PBMS" run "${case}_killed.yaml" --resume > "${case}_resumed.out" 2>&1 ||
+    { cat "${case}_resumed.out"; fail "$case: the resume"; }
+  grep -q "goes on from its checkpoint .*step_000000000800.h5" "${case}_resumed.out" ||
+    { cat "${case}_resumed.out"; fail "$case: the resume did not go on from step 800"; }
+  compare "${case}_whole" "${case}_killed" disks 0 0 || fail "$case: resumed on 1 rank, not bitwise"
+  if [ "$case" = mpm_j2 ]; then  # the checkpoint must have carried plastic state
+    "$PY" - "$PWD/runs/mpm_j2_whole" <<'PYEOF' || fail "mpm_j2: no plastic flow to carry"
+import sys, h5py
+d = h5py.File(f"{sys.argv[1]}/results.h5")["disks/probes/energy.dissipated"][()]
+assert d[-1] > 0, d[-1]
+print(f"  J2: {d[-1]:.3g} dissipated by plastic flow by the end")
+PYEOF
+  fi
+  "$PBMS" run "${case}_other_ranks.yaml" --resume --ranks mpm=2 > "${case}_other_ranks.out" 2>&1 ||
+    { cat "${case}_other_ranks.out"; fail "$case: the resume on 2 ranks"; }
+  compare "${case}_whole" "${case}_other_ranks" disks 1e-10 1e-10 ||
+    fail "$case: resumed on 2 ranks, beyond round-off"
 done
 
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <map>
 #include <tuple>
 
 #include "pbms/error.hpp"
@@ -126,64 +128,49 @@ H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int6
               blocks_.count(), blocks_.begin(), n_total_, dxpl_.id());
 }
 
-H5mdWriter::H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids, Reopen)
-    : comm_(comm),
-      rank_(rank_of(comm)),
-      opt_(opt),
-      rows_(comm, ids),
-      blocks_(comm, rows_.total()),
-      n_total_(rows_.total()) {
-  blocks_.route(rows_.rows(ids));
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  file_ = h5::open_read_write(opt.path, comm);
-  dxpl_ = h5::Handle(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
-  if (size > 1) H5Pset_dxpl_mpio(dxpl_.id(), H5FD_MPIO_COLLECTIVE);
+namespace {
+
+// A dataset read whole into doubles (or int64 ids).
+template <typename T>
+std::vector<T> read_all(hid_t parent, const std::string& name, hid_t type) {
+  h5::Handle ds(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose);
+  h5::Handle space(H5Dget_space(ds.id()), H5Sclose);
+  std::vector<T> out(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id())));
+  if (!out.empty() && H5Dread(ds.id(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
+    throw Error(fmt::format("cannot read '{}'", name));
+  }
+  return out;
 }
 
-H5mdWriter::TimeSeries H5mdWriter::cut_series(hid_t parent, const std::string& name,
-                                              hsize_t frames) {
-  TimeSeries ts;
-  ts.group = h5::Handle(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose);
-  for (auto [handle, dname] :
-       {std::pair{&ts.step, "step"}, std::pair{&ts.time, "time"}, std::pair{&ts.value, "value"}}) {
-    *handle = h5::Handle(H5Dopen2(ts.group.id(), dname, H5P_DEFAULT), H5Dclose);
-    h5::Handle space(H5Dget_space(handle->id()), H5Sclose);
-    std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space.id())));
-    H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
-    dims[0] = std::min(dims[0], frames);
-    H5Dset_extent(handle->id(), dims.data());
-  }
-  return ts;
-}
+}  // namespace
 
 std::unique_ptr<H5mdWriter> H5mdWriter::reopen(MPI_Comm comm, const Options& opt,
                                                const std::vector<int64_t>& ids, int64_t last_step) {
-  // The frames to keep: those at or before last_step (steps only grow). The
-  // cut is made by one process (parallel HDF5 does not shrink datasets
-  // reliably), then the file is opened by all.
-  long long keep = 0;
+  // The kept frames are copied into a new file, written as any file is: a
+  // file written on another rank count cannot always be appended to in
+  // parallel. Rank 0 reads them and passes every particle of each frame.
+  const int rank = rank_of(comm);
+  const std::string old = opt.path + ".resumed_from";
+  std::vector<int64_t> all_ids, steps;
+  std::vector<int> species;
+  std::vector<double> times, edges;
+  std::map<std::string, std::vector<double>> values;  // series -> frames x rows x width
   std::string problem;
-  if (rank_of(comm) == 0) {
+  if (rank == 0) {
     try {
-      h5::Handle f = h5::open_read_write(opt.path);
+      std::filesystem::rename(opt.path, old);
+      h5::Handle f(H5Fopen(old.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
       h5::Handle all(H5Gopen2(f.id(), "particles/all", H5P_DEFAULT), H5Gclose);
-      h5::Handle steps(H5Dopen2(all.id(), "position/step", H5P_DEFAULT), H5Dclose);
-      h5::Handle space(H5Dget_space(steps.id()), H5Sclose);
-      std::vector<int64_t> written(
-          static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id())));
-      if (!written.empty()) {
-        H5Dread(steps.id(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, written.data());
-      }
-      while (keep < static_cast<long long>(written.size()) &&
-             written[static_cast<std::size_t>(keep)] <= last_step) {
-        ++keep;
-      }
-      const auto frames = static_cast<hsize_t>(keep);
-      h5::Handle box(H5Gopen2(all.id(), "box", H5P_DEFAULT), H5Gclose);
-      cut_series(box.id(), "edges", frames);
+      all_ids = read_all<int64_t>(all.id(), "id", H5T_NATIVE_INT64);
+      species = read_all<int>(all.id(), "species", H5T_NATIVE_INT);
+      steps = read_all<int64_t>(all.id(), "position/step", H5T_NATIVE_INT64);
+      times = read_all<double>(all.id(), "position/time", H5T_NATIVE_DOUBLE);
+      edges = read_all<double>(all.id(), "box/edges/value", H5T_NATIVE_DOUBLE);
       for (const char* name : {"position", "velocity", "force", "internal_energy"}) {
-        if (H5Lexists(all.id(), name, H5P_DEFAULT) > 0) cut_series(all.id(), name, frames);
+        if (H5Lexists(all.id(), name, H5P_DEFAULT) > 0) {
+          values[name] =
+              read_all<double>(all.id(), std::string(name) + "/value", H5T_NATIVE_DOUBLE);
+        }
       }
     } catch (const std::exception& e) {
       problem = e.what();
@@ -194,25 +181,39 @@ std::unique_ptr<H5mdWriter> H5mdWriter::reopen(MPI_Comm comm, const Options& opt
   problem.resize(static_cast<std::size_t>(length));
   MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm);
   if (!problem.empty()) throw Error(fmt::format("H5MD file '{}': {}", opt.path, problem));
-  MPI_Bcast(&keep, 1, MPI_LONG_LONG, 0, comm);
-
-  std::unique_ptr<H5mdWriter> w(new H5mdWriter(comm, opt, ids, Reopen{}));
-  h5::Handle all(H5Gopen2(w->file_.id(), "particles/all", H5P_DEFAULT), H5Gclose);
-  {
-    h5::Handle ids_ds(H5Dopen2(all.id(), "id", H5P_DEFAULT), H5Dclose);
-    h5::Handle ids_space(H5Dget_space(ids_ds.id()), H5Sclose);
-    if (static_cast<hsize_t>(H5Sget_simple_extent_npoints(ids_space.id())) != w->n_total_) {
-      throw Error(fmt::format("H5MD file '{}' holds other particles than this run", opt.path));
-    }
+  long long total = static_cast<long long>(all_ids.size()), keep = 0;
+  while (keep < static_cast<long long>(steps.size()) &&
+         steps[static_cast<std::size_t>(keep)] <= last_step) {
+    ++keep;
   }
-  const auto frames = static_cast<hsize_t>(keep);
-  h5::Handle box(H5Gopen2(all.id(), "box", H5P_DEFAULT), H5Gclose);
-  w->edges_ = cut_series(box.id(), "edges", frames);
-  w->position_ = cut_series(all.id(), "position", frames);
-  if (opt.velocities) w->velocity_ = cut_series(all.id(), "velocity", frames);
-  if (opt.forces) w->force_ = cut_series(all.id(), "force", frames);
-  if (opt.internal_energy) w->internal_energy_ = cut_series(all.id(), "internal_energy", frames);
-  w->frames_ = keep;
+  MPI_Bcast(&total, 1, MPI_LONG_LONG, 0, comm);
+  MPI_Bcast(&keep, 1, MPI_LONG_LONG, 0, comm);
+  long long mine = static_cast<long long>(ids.size()), everyone = 0;
+  MPI_Allreduce(&mine, &everyone, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  if (everyone != total) {
+    throw Error(
+        fmt::format("H5MD file '{}' holds {} particles, this run {}", opt.path, total, everyone));
+  }
+  auto w = std::make_unique<H5mdWriter>(comm, opt, all_ids, species);
+  const auto n = static_cast<std::size_t>(total);
+  const auto frame = [&](const char* name, std::size_t width, long long k) {
+    if (rank != 0 || values.count(name) == 0) return std::vector<double>{};
+    const auto& v = values[name];
+    const auto begin =
+        v.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(k) * n * width);
+    return std::vector<double>(begin, begin + static_cast<std::ptrdiff_t>(n * width));
+  };
+  for (long long k = 0; k < keep; ++k) {
+    std::array<double, 3> box{};
+    if (rank == 0) {
+      for (std::size_t a = 0; a < 3; ++a) box[a] = edges[static_cast<std::size_t>(k) * 9 + 4 * a];
+    }
+    w->write_frame(rank == 0 ? steps[static_cast<std::size_t>(k)] : 0,
+                   rank == 0 ? times[static_cast<std::size_t>(k)] : 0.0, box,
+                   rank == 0 ? all_ids : std::vector<int64_t>{}, frame("position", 3, k),
+                   frame("velocity", 3, k), frame("force", 3, k), frame("internal_energy", 1, k));
+  }
+  if (rank == 0) std::filesystem::remove(old);
   return w;
 }
 

@@ -68,11 +68,12 @@ class H5mdWriter {
   [[nodiscard]] int64_t frames() const { return frames_; }
 
   // Goes on with the file `opt.path` a run of the same particles wrote
-  // (`ids` as for the constructor): its frames up to `last_step` are kept,
-  // later ones dropped, so that a run resumed from a checkpoint after
-  // `last_step` writes them again and the file ends as an uninterrupted
-  // run's. Collective. Throws pbms::Error when the file holds other
-  // particles.
+  // (`ids` as for the constructor, on any rank count): its frames up to
+  // `last_step` are kept, later ones dropped, so that a run resumed from a
+  // checkpoint after `last_step` writes them again and the file ends as an
+  // uninterrupted run's. The kept frames are copied into a new file of the
+  // same name. Collective. Throws pbms::Error when the file holds another
+  // number of particles.
   static std::unique_ptr<H5mdWriter> reopen(MPI_Comm comm, const Options& opt,
                                             const std::vector<int64_t>& ids, int64_t last_step);
 
@@ -80,10 +81,7 @@ class H5mdWriter {
   struct TimeSeries {
     h5::Handle group, step, time, value;
   };
-  struct Reopen {};
-  H5mdWriter(MPI_Comm comm, const Options& opt, const std::vector<int64_t>& ids, Reopen);
-  // The series `name` under `parent`, cut to its first `frames` frames.
-  static TimeSeries cut_series(hid_t parent, const std::string& name, hsize_t frames);
+
   // `unit` (null: none, and none on time either) goes into the attribute
   // `unit_attribute` of the values.
   TimeSeries make_series(hid_t parent, const std::string& name, int rank_dims, hsize_t n,
