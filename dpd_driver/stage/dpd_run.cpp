@@ -256,8 +256,8 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
     }
     const bool stop = checkpoints.stop_agreed(n) && n < p.steps;
     if (checkpointed && (stop || checkpoints.due(n, p.steps))) {
-      const std::string file =
-          checkpoints.write(n, static_cast<double>(n) * run.dt(), run.save(initial));
+      const std::string file = checkpoints.write(n, static_cast<double>(n) * run.dt(),
+                                                 [&] { return run.save(initial); });
       if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, p.steps, file));
     }
     if (stop) {
@@ -277,6 +277,7 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   report_run(r, engine, probes, initial, last, p.steps, seconds, p.steps - first_step + 1);
   if (impact) impact->report(r);
   if (tension && rp.mode == Mode::kTension) tension->report(r, ctx.stage());
+  checkpoints.report(r);
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],
                                               engine.domain().dims()[1], engine.domain().dims()[2]);
   r.attributes["neighbour_list_builds"] = fmt::format("{}", engine.rebuilds());

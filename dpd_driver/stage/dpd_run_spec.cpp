@@ -32,6 +32,7 @@ std::vector<OutputSpec> common_outputs() {
 config::StageKindSpec DpdRunStage::spec() {
   config::StageKindSpec s;
   s.kind = "dpd_run";
+  s.checkpoints = true;
   s.program = "dpd_driver";
   s.doc =
       "DPD or DPDE run of mesoparticles: free, impact (wave speed) or tension (Young's "
@@ -132,6 +133,7 @@ config::StageKindSpec DpdRunStage::spec() {
 config::StageKindSpec DpdEquilibrateStage::spec() {
   config::StageKindSpec s;
   s.kind = "dpd_equilibrate";
+  s.checkpoints = true;
   s.program = "dpd_driver";
   s.doc = "DPD run with a Berendsen thermostat, for a later stage to start from";
   s.material_kinds = {"dpd_mesoparticle"};

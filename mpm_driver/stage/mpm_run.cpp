@@ -98,7 +98,7 @@ void MpmRunStage::run(StageContext& ctx) {
     if (bar) bar->after_step(engine, n, t);
     const bool stop = checkpoints.stop_agreed(n) && n < steps;
     if (checkpointed && (stop || checkpoints.due(n, steps))) {
-      const std::string file = checkpoints.write(n, t, save());
+      const std::string file = checkpoints.write(n, t, save);
       if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, steps, file));
     }
     if (stop) {
@@ -117,6 +117,7 @@ void MpmRunStage::run(StageContext& ctx) {
   probes.report(r, params, ctx.stage());
   if (bar) bar->report(r, params.metal_units, ctx.stage());
   if (tension) tension->report(r, ctx.stage());
+  checkpoints.report(r);
   r.attributes["gradient"] = params.gradient;
   const auto& dims = engine.partition().dims();
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", dims[0], dims[1], dims[2]);

@@ -23,6 +23,7 @@ Param axes_param(const std::string& doc) {
 config::StageKindSpec MpmRunStage::spec() {
   config::StageKindSpec s;
   s.kind = "mpm_run";
+  s.checkpoints = true;
   s.program = "mpm_driver";
   s.doc =
       "Explicit material point method run (update-stress-last or -first, FLIP/PIC, plain or "

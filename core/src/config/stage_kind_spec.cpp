@@ -55,6 +55,7 @@ YAML::Node to_yaml(const StageKindSpec& s) {
   }
   n["material_kinds"] = s.material_kinds;
   if (s.cacheable) n["cacheable"] = true;
+  if (s.checkpoints) n["checkpoints"] = true;
   if (!s.uses.empty()) n["uses"] = s.uses;
   for (const auto& p : s.partners) {
     YAML::Node pn;
@@ -82,6 +83,7 @@ StageKindSpec stage_kind_from_yaml(const YAML::Node& n) {
   }
   if (n["material_kinds"]) s.material_kinds = n["material_kinds"].as<std::vector<std::string>>();
   s.cacheable = n["cacheable"] && n["cacheable"].as<bool>();
+  s.checkpoints = n["checkpoints"] && n["checkpoints"].as<bool>();
   if (n["uses"]) s.uses = n["uses"].as<std::vector<std::string>>();
   for (const auto& pn : n["partners"]) {
     s.partners.push_back({pn["program"].as<std::string>(), pn["kind"].as<std::string>()});

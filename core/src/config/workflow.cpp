@@ -5,6 +5,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "pbms/config/stage_names.hpp"
 #include "pbms/config/validator.hpp"
@@ -194,11 +195,30 @@ class WorkflowLoader {
     return true;
   }
 
-  // A checkpoint map must say when.
+  // A checkpoint map must say when, and some stage must write them.
   void check_checkpoint() {
     const YAML::Node c = root_["checkpoint"];
-    if (!c || !c.IsMap() || c["every_steps"] || c["every_minutes"]) return;
-    v_.error(c, "checkpoint", "say when to write one: every_steps, every_minutes or both");
+    if (!c || !c.IsMap()) return;
+    if (!c["every_steps"] && !c["every_minutes"]) {
+      v_.error(c, "checkpoint", "say when to write one: every_steps, every_minutes or both");
+      return;
+    }
+    std::vector<std::string> writers;
+    for (const auto& d : drivers_) {
+      for (const auto& k : d.stage_kinds) {
+        if (k.checkpoints) writers.push_back(k.kind);
+      }
+    }
+    for (const auto& s : root_["stages"]) {
+      if (s.IsMap() && s["kind"] &&
+          std::find(writers.begin(), writers.end(), s["kind"].Scalar()) != writers.end()) {
+        return;
+      }
+    }
+    v_.warn(c, "checkpoint",
+            fmt::format("no stage of this workflow writes checkpoints (only {} do): a resumed "
+                        "run keeps the finished stages and starts the others again",
+                        fmt::join(writers, ", ")));
   }
 
   // The run directory must be possible: nothing in the way (a file where a

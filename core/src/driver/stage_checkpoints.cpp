@@ -24,6 +24,21 @@ StageCheckpoints::StageCheckpoints(StageContext& ctx) : ctx_(ctx) {
   if (enabled()) window_.emplace();
 }
 
+std::string StageCheckpoints::write(std::int64_t step, double sim_time_ps,
+                                    const std::function<CheckpointArchive()>& make) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string file = write(step, sim_time_ps, make());
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++written_;
+  return file;
+}
+
+void StageCheckpoints::report(StageResults& r) const {
+  if (written_ == 0) return;
+  r.attributes["checkpoints_written"] = fmt::format("{}", written_);
+  r.attributes["checkpoint_seconds"] = fmt::format("{:.6g}", seconds_);
+}
+
 bool StageCheckpoints::stop_agreed(std::int64_t step) {
   if (!enabled() || step % kStopCheckEvery != 0) return false;
   int mine = stop_requested() ? 1 : 0, any = 0;

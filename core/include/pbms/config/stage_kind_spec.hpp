@@ -56,6 +56,9 @@ struct StageKindSpec {
   // A reference result (MD) that depends only on its input: the coupler
   // keeps it in <output>/.cache/ and reuses it instead of running again.
   bool cacheable = false;
+  // Writes checkpoints when the workflow has a `checkpoint:` block, and
+  // goes on from one on --resume (docs/checkpoints.md).
+  bool checkpoints = false;
   // A coupler-side kind: the drivers it sends requests to.
   std::vector<std::string> uses;
   // A kind run by several drivers together (a concurrent DPD/MPM stage):

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -32,6 +33,12 @@ class StageCheckpoints {
   // Collective; rank 0 writes `archive` and tells the coupler. Returns the
   // file, relative to the run directory.
   std::string write(std::int64_t step, double sim_time_ps, const CheckpointArchive& archive);
+  // write() of the archive `make` fills, timed (gather included).
+  std::string write(std::int64_t step, double sim_time_ps,
+                    const std::function<CheckpointArchive()>& make);
+  // The attributes checkpoints_written and checkpoint_seconds (rank 0's
+  // wall time in making and writing them), when any was written.
+  void report(StageResults& r) const;
 
   // Collective: whether a rank has been asked to stop (stop_request.hpp),
   // checked every kStopCheckEvery steps; never when checkpoints are off.
@@ -49,6 +56,8 @@ class StageCheckpoints {
   StageContext& ctx_;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
   std::optional<StopWindow> window_;  // open while checkpoints are on
+  int written_ = 0;
+  double seconds_ = 0.0;
 };
 
 }  // namespace pbms
