@@ -8,6 +8,7 @@
 #include "pbms/analysis/block_average.hpp"
 #include "pbms/analysis/equation_of_state.hpp"
 #include "pbms/analysis/statistics.hpp"
+#include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 #include "pbms/units.hpp"
 
@@ -20,6 +21,7 @@ using units::Dimension;
 config::StageKindSpec IsothermStage::spec() {
   config::StageKindSpec s;
   s.kind = "md_isotherm";
+  s.checkpoints = true;
   s.program = "md_driver";
   s.doc =
       "Pressure-volume isotherm of a periodic crystal by NPT MD (Nose-Hoover), with a "
@@ -251,14 +253,86 @@ void report_isotherm(StageContext& ctx, const IsothermParams& prm, const MdMater
 
 }  // namespace
 
+namespace {
+
+// The production samples of the points finished so far, for a checkpoint
+// after each point: every point is its own LAMMPS run from its own seed, so
+// a resumed isotherm runs the remaining points exactly as they would have
+// run.
+class FinishedPoints {
+ public:
+  void add(const std::vector<std::vector<double>>& prod) {
+    std::vector<double> flat;
+    for (const auto& row : prod) flat.insert(flat.end(), row.begin(), row.end());
+    points_.push_back(std::move(flat));
+  }
+  [[nodiscard]] CheckpointArchive archive() const {
+    CheckpointArchive a;
+    a.put("isotherm/points", static_cast<double>(points_.size()));
+    for (std::size_t k = 0; k < points_.size(); ++k) {
+      a.put(fmt::format("isotherm/point_{}", k), points_[k]);
+    }
+    return a;
+  }
+  // The points a checkpoint holds, each as its production rows.
+  static std::vector<std::vector<std::vector<double>>> read(const CheckpointArchive& a) {
+    std::vector<std::vector<std::vector<double>>> out;
+    const auto n = static_cast<std::size_t>(a.scalar("isotherm/points"));
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& flat = a.get(fmt::format("isotherm/point_{}", k));
+      std::vector<std::vector<double>> rows;
+      for (std::size_t r = 0; r + 4 <= flat.size(); r += 4) {
+        rows.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(r),
+                          flat.begin() + static_cast<std::ptrdiff_t>(r + 4));
+      }
+      out.push_back(std::move(rows));
+    }
+    return out;
+  }
+
+ private:
+  std::vector<std::vector<double>> points_;
+};
+
+}  // namespace
+
 void IsothermStage::run(StageContext& ctx) {
   const IsothermParams prm = IsothermParams::from_yaml(ctx.params());
   const MdMaterial mat = material_of(ctx, prm.material);
   const Plan plan = plan_of(ctx, prm, mat);
+  const std::size_t n = prm.pressures.size();
   Isotherm table;
-  for (size_t i = 0; i < prm.pressures.size(); ++i) {
-    table.add(prm.pressures[i], sample_point(ctx, prm, mat, plan, i));
+  FinishedPoints finished;
+  StageCheckpoints checkpoints(ctx);
+  std::size_t first = 0;
+  if (checkpoints.enabled() && checkpoints.resuming()) {
+    for (const auto& prod : FinishedPoints::read(checkpoints.resume_archive())) {
+      const std::string tag = fmt::format("p{}", first);
+      table.add(prm.pressures[first], prod);
+      finished.add(prod);
+      if (ctx.rank() == 0) {
+        ctx.results().files.push_back(ctx.stage() + "/" + tag + ".in");
+        if (prm.trajectory_every > 0)
+          ctx.results().files.push_back(ctx.stage() + "/" + tag + ".h5md");
+      }
+      ++first;
+    }
   }
+  for (std::size_t i = first; i < n; ++i) {
+    const auto prod = sample_point(ctx, prm, mat, plan, i);
+    table.add(prm.pressures[i], prod);
+    finished.add(prod);
+    // A checkpoint after every point but the last: the point is where an
+    // isotherm can stop and go on exactly. A stop request waits for it.
+    if (!checkpoints.enabled() || i + 1 == n) continue;
+    const auto step = static_cast<std::int64_t>(i + 1) * plan.per_point;
+    const std::string file = checkpoints.write(step, static_cast<double>(step) * prm.timestep,
+                                               [&] { return finished.archive(); });
+    if (checkpoints.stop_now()) {
+      throw StageFailure(StageCheckpoints::stopped_message(step, plan.total, file));
+    }
+  }
+  checkpoints.report(ctx.results());
   report_isotherm(ctx, prm, mat, plan, table);
 }
 

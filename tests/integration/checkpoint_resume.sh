@@ -16,7 +16,10 @@ source "$(dirname "$0")/lib.sh"
 # crystal (shardlow_dpde) and a rigid flyer's impact; and mpm_run (the
 # colliding disks, 1,000 steps on 1 rank, resumed also on 2: round-off
 # 1e-10 as mpm_ranks.sh) for an elastic material with DDMP gradients, J2
-# with plastic flow and an ideal gas. The pull without a
+# with plastic flow and an ideal gas; and an md_isotherm (256 atoms, 3
+# pressures on 2 ranks) killed while writing the checkpoint after its second
+# point, resumed from its first: every summary value and the isotherm table
+# bitwise. The pull without a
 # checkpoint: block ends bitwise as the whole run that wrote them: writing
 # one disturbs nothing. SIGTERM to `./pbms run` during the pull: the job
 # writes a checkpoint at the next step boundary and ends non-zero within
@@ -76,6 +79,16 @@ for case, cfg in mpm_cases.items():
     write(f"{case}_whole", cfg)
     write(f"{case}_killed", cfg)
     write(f"{case}_other_ranks", cfg)
+# MD: a small isotherm (256 atoms, 3 pressures), a checkpoint after each point.
+md = yaml.safe_load(open(sys.argv[1].replace("tests/integration/configs/checkpoint_dpd.yaml", "configs/md_isotherm.yaml")))
+md["launch"] = {"md": 2}
+md["checkpoint"] = {"every_minutes": 30}
+md["run"]["output"] = "runs"
+md["stages"][0].update({"pressures": ["0 GPa", "2 GPa", "5 GPa"], "cells": [4, 4, 4],
+                        "equilibration": "0.4 ps", "production": "0.8 ps"})
+write("md_whole", md)
+md["run"]["output"] = "runs_md"  # its own result cache: the whole run's would answer it
+write("md_killed", md)
 plain = copy.deepcopy(pull)
 plain.pop("checkpoint")
 write("pull_plain", plain)
@@ -202,17 +215,53 @@ PYEOF
     fail "$case: resumed on 2 ranks, beyond round-off"
 done
 
+echo "== md_isotherm: killed while the checkpoint after its second point is written"
+"$PBMS" run md_whole.yaml > md_whole.out 2>&1 || { cat md_whole.out; fail "md: the whole run"; }
+mapfile -t md_steps < <(grep -o "checkpoint after step [0-9]*" runs/md_whole/log.txt | awk '{print $4}')
+[ "${#md_steps[@]}" -eq 2 ] || fail "md: the whole isotherm wrote ${#md_steps[@]} checkpoints, not 2"
+second=$(printf 'step_%012d' "${md_steps[1]}")
+first=$(printf 'step_%012d' "${md_steps[0]}")
+PBMS_TEST_CHECKPOINT_PAUSE="$second:120" "$PBMS" run md_killed.yaml > md_killed.out 2>&1 &
+pid=$!
+for _ in $(seq 1 1200); do
+  [ -f "runs_md/md_killed/isotherm/checkpoints/$second.h5.partial" ] && break
+  kill -0 $pid 2>/dev/null || { cat md_killed.out; fail "md: ended before the kill"; }
+  sleep 0.1
+done
+kill -9 "$(job_process md_driver)"
+timeout 60 tail --pid=$pid -f /dev/null || fail "md: the job did not end after the kill"
+"$PBMS" run md_killed.yaml --resume > md_resumed.out 2>&1 || { cat md_resumed.out; fail "md: the resume"; }
+grep -q "goes on from its checkpoint .*$first.h5" md_resumed.out || { cat md_resumed.out; fail "md: not from the first point"; }
+"$PY" - "$PWD/runs/md_whole" "$PWD/runs_md/md_killed" <<'PYEOF' || fail "md: the resumed isotherm differs"
+import sys, yaml, h5py, numpy as np
+a, b = sys.argv[1:]
+sa = yaml.safe_load(open(f"{a}/summary.yaml"))["stages"]["isotherm"]["results"]
+sb = yaml.safe_load(open(f"{b}/summary.yaml"))["stages"]["isotherm"]["results"]
+bad = [k for k in sa if sa[k]["value"] != sb[k]["value"]]
+with h5py.File(f"{a}/results.h5") as fa, h5py.File(f"{b}/results.h5") as fb:
+    bad += [c for c in fa["isotherm/isotherm"] if not np.array_equal(fa["isotherm/isotherm"][c][()], fb["isotherm/isotherm"][c][()])]
+print(f"  resumed from the first point: {len(sa)} summary values and the isotherm table "
+      + ("bitwise as the whole run" if not bad else f"differ: {bad}"))
+sys.exit(1 if bad else 0)
+PYEOF
+
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
-"$PBMS" run pull_signalled.yaml > signalled.out 2>&1 &
+# The signal comes while the checkpoint after step 500 is held for 3 s, so
+# that it finds the stage running whatever the machine's speed.
+PBMS_TEST_CHECKPOINT_PAUSE="step_000000000500:3" "$PBMS" run pull_signalled.yaml > signalled.out 2>&1 &
 launcher=$!
 run="$PWD/runs/pull_signalled"
-wait_for_step "$run" pull "[1-9][0-9][0-9]" $launcher 600
+for _ in $(seq 1 600); do
+  [ -f "$run/pull/checkpoints/step_000000000500.h5.partial" ] && break
+  kill -0 $launcher 2>/dev/null || { cat signalled.out; fail "the job ended before the signal"; }
+  sleep 0.1
+done
 t0=$(date +%s.%N)
 kill -TERM $launcher
 timeout 10 tail --pid=$launcher -f /dev/null || fail "the job did not end within 10 s of SIGTERM"
 echo "  ended $(printf '%.1f' "$(echo "$(date +%s.%N) - $t0" | bc)") s after SIGTERM"
 ! wait $launcher || fail "the signalled job exited 0"
-grep -q "to go on from there: ./pbms run pull_signalled.yaml --resume" signalled.out ||
+grep -q "checkpoint pull/checkpoints/step_000000000510.h5 holds the run; to go on from there: ./pbms run pull_signalled.yaml --resume" signalled.out ||
   { cat signalled.out; fail "the stopped job does not say how to go on"; }
 [ "$(yget "$run/manifest.yaml" status)" = stopped ] || fail "the manifest does not say stopped"
 "$PBMS" run pull_signalled.yaml --resume > signalled_resumed.out 2>&1 ||

@@ -40,7 +40,12 @@ void StageCheckpoints::report(StageResults& r) const {
 }
 
 bool StageCheckpoints::stop_agreed(std::int64_t step) {
-  if (!enabled() || step % kStopCheckEvery != 0) return false;
+  if (step % kStopCheckEvery != 0) return false;
+  return stop_now();
+}
+
+bool StageCheckpoints::stop_now() {
+  if (!enabled()) return false;
   int mine = stop_requested() ? 1 : 0, any = 0;
   mpi::check(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, ctx_.comm()), "MPI_Allreduce");
   return any != 0;

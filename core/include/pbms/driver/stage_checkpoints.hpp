@@ -44,6 +44,9 @@ class StageCheckpoints {
   // checked every kStopCheckEvery steps; never when checkpoints are off.
   [[nodiscard]] bool stop_agreed(std::int64_t step);
   static constexpr std::int64_t kStopCheckEvery = 10;
+  // Collective: the same at a boundary a stage chose itself (an isotherm's
+  // finished point).
+  [[nodiscard]] bool stop_now();
   // The failure a stopped stage ends with: after which step, and the file.
   [[nodiscard]] static std::string stopped_message(std::int64_t step, std::int64_t total,
                                                    const std::string& file);
