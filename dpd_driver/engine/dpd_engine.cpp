@@ -11,6 +11,7 @@
 #include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/mpi/rank_rows.hpp"
 #include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
 
@@ -70,22 +71,8 @@ DpdEngine::State DpdEngine::gather_state() const {
     mine.push_back(p.internal_energy[i]);
     for (int a = 0; a < 3; ++a) mine.push_back(i < built.size() ? built[i][a] : p.x[i][a]);
   }
-  State out;
-  const int ranks = domain_.size();
-  int count = static_cast<int>(mine.size());
-  std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(counts.size());
-  mpi::check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm()), "MPI_Gather");
-  int total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    offsets[r] = total;
-    total += counts[r];
-    out.counts.push_back(static_cast<double>(counts[r] / static_cast<int>(kStateWidth)));
-  }
-  out.rows.resize(domain_.rank() == 0 ? static_cast<std::size_t>(total) : 0);
-  mpi::check(MPI_Gatherv(mine.data(), count, MPI_DOUBLE, out.rows.data(), counts.data(),
-                         offsets.data(), MPI_DOUBLE, 0, comm()),
-             "MPI_Gatherv");
-  return out;
+  auto gathered = mpi::gather_rank_rows(comm(), mine, kStateWidth);
+  return {std::move(gathered.rows), std::move(gathered.counts)};
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include "engine/point_migration.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/mpi/rank_rows.hpp"
 
 namespace pbms::mpm {
 namespace {
@@ -115,21 +116,8 @@ MpmEngine::State MpmEngine::gather_state() const {
                 {st.density, st.plastic_strain, st.internal_energy,
                  static_cast<double>(p.material[i]), static_cast<double>(p.groups[i]), p.work[i]});
   }
-  State out;
-  int count = static_cast<int>(mine.size());
-  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(counts.size());
-  mpi::check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
-  int total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    offsets[r] = total;
-    total += counts[r];
-    out.counts.push_back(static_cast<double>(counts[r] / static_cast<int>(kStateWidth)));
-  }
-  out.rows.resize(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
-  mpi::check(MPI_Gatherv(mine.data(), count, MPI_DOUBLE, out.rows.data(), counts.data(),
-                         offsets.data(), MPI_DOUBLE, 0, comm_),
-             "MPI_Gatherv");
-  return out;
+  auto gathered = mpi::gather_rank_rows(comm_, mine, kStateWidth);
+  return {std::move(gathered.rows), std::move(gathered.counts)};
 }
 
 void MpmEngine::restore_state(const State& state, std::int64_t steps) {
