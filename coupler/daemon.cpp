@@ -17,6 +17,7 @@
 #include "capabilities.hpp"
 #include "driver_catalog.hpp"
 #include "earlier_run.hpp"
+#include "part_checkpoints.hpp"
 #include "pbms/driver/stop_request.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/mpmd.hpp"
@@ -235,7 +236,9 @@ class Daemon {
     if (wf_.resolved["checkpoint"]) rs.checkpoint_yaml = yaml_text(wf_.resolved["checkpoint"]);
     // A stage the resumed run was running goes on from its newest complete
     // checkpoint (the manifest lists only complete ones).
-    if (opt_.resume) rs.resume_from = record_->newest_checkpoint(stage.name);
+    const std::vector<std::string> resume_files =
+        opt_.resume ? record_->newest_checkpoint(stage.name) : std::vector<std::string>{};
+    if (!resume_files.empty()) rs.resume_from = resume_files.front();
     record_->stage_started(stage);
     if (!rs.resume_from.empty()) {
       log(fmt::format("stage '{}' goes on from its checkpoint {}", stage.name, rs.resume_from));
@@ -259,48 +262,69 @@ class Daemon {
     // Partners (the MPM part of a concurrent stage) start at the same time:
     // their parts exchange data with the main one rank to rank.
     std::map<protocol::RequestId, std::optional<protocol::StageDone>> partners;
-    for (const auto& partner : spec_of(stage.kind).partners) {
+    // Each part writes its own file of a checkpoint (the main part first).
+    std::map<protocol::RequestId, std::size_t> part_of{{request, 0}};
+    const auto& partner_kinds = spec_of(stage.kind).partners;
+    for (std::size_t k = 0; k < partner_kinds.size(); ++k) {
       protocol::RunStage prs = rs;
-      prs.kind = partner.kind;
-      partners[scheduler_.submit(partner.program, prs)] = std::nullopt;
+      prs.kind = partner_kinds[k].kind;
+      if (!rs.resume_from.empty()) prs.resume_from = resume_files.at(k + 1);
+      const auto id = scheduler_.submit(partner_kinds[k].program, prs);
+      partners[id] = std::nullopt;
+      part_of[id] = k + 1;
     }
+    PartCheckpoints checkpoints(part_of.size());
 
     StageProgress progress(*this, stage.name, "step");
-    // Any failed part ends the run: the other parts would wait for it.
+    // Any failed part ends the run: the other parts would wait for it. A
+    // part stopped on request is the exception: the others stop at the same
+    // step, and their files complete the checkpoint it wrote.
+    std::optional<protocol::StageFailed> stopped;
+    const auto on_failure = [&](const protocol::StageFailed& f) {
+      if (!f.reason.starts_with(kStoppedBySignal))
+        fail(f.program, f.rank, f.stage, f.step, f.reason);
+      if (!stopped) stopped = f;
+      if (partners.count(f.request) != 0) partners[f.request] = protocol::StageDone{};
+    };
     auto on_answer = [&](const Answer& a) {
       if (const auto* p = std::get_if<protocol::Progress>(&a)) {
         if (!p->checkpoint.empty()) {
-          record_->checkpoint_written(stage.name, p->step, p->checkpoint, keep_checkpoints());
-          if (file_log_) file_log_->info("  checkpoint after step {}: {}", p->step, p->checkpoint);
+          const auto files = checkpoints.add(part_of.at(p->request), p->step, p->checkpoint);
+          if (files) {
+            record_->checkpoint_written(stage.name, p->step, *files, keep_checkpoints());
+            if (file_log_) {
+              file_log_->info("  checkpoint after step {}: {}", p->step, fmt::join(*files, ", "));
+            }
+          }
         } else if (p->request == request) {
           progress.show(p->step, p->total_steps, p->sim_time_ps, p->phase);
         }
       } else if (const auto* f = std::get_if<protocol::StageFailed>(&a)) {
-        fail(f->program, f->rank, f->stage, f->step, f->reason);
+        on_failure(*f);
       } else if (const auto* d = std::get_if<protocol::StageDone>(&a)) {
         if (partners.count(d->request) != 0) partners[d->request] = *d;
       }
     };
     const Answer answer = scheduler_.wait_for(request, on_answer);
-    // A workflow stage without its result leaves later stages without their
-    // inputs: it ends the run, though the driver could go on.
-    if (const auto* f = std::get_if<protocol::StageFailed>(&answer)) {
-      fail(f->program, f->rank, f->stage, f->step, f->reason);
-    }
-    auto done = std::get<protocol::StageDone>(answer);
+    if (const auto* f = std::get_if<protocol::StageFailed>(&answer)) on_failure(*f);
     for (auto& [id, part] : partners) {
       if (!part) on_answer(scheduler_.wait_for(id, on_answer));
-      merge_part(done.results, *part);
     }
+    // A workflow stage without its result leaves later stages without their
+    // inputs: it ends the run, though the driver could go on.
+    if (stopped)
+      fail(stopped->program, stopped->rank, stopped->stage, stopped->step, stopped->reason);
+    auto done = std::get<protocol::StageDone>(answer);
+    for (auto& [id, part] : partners) merge_part(done.results, *part);
     console_.end_progress();
     if (identity) cache.store(*identity, done, record_->dir());
     log(fmt::format("stage '{}' finished in {}", stage.name, format_duration(done.wall_s)));
     finish_stage(stage, std::move(done));
     if (stop_requested()) {
       fail(stage.program, 0, stage.name, -1,
-           fmt::format("stopped by a signal (SIGTERM or SIGUSR1: a wall-time limit?) as stage "
+           fmt::format("{} (SIGTERM or SIGUSR1: a wall-time limit?) as stage "
                        "'{}' finished",
-                       stage.name));
+                       kStoppedBySignal, stage.name));
     }
   }
 
@@ -389,7 +413,7 @@ class Daemon {
                                   ? std::string()
                                   : fmt::format(" in stage '{}'{}", stage,
                                                 step >= 0 ? fmt::format(" at step {}", step) : "");
-    const bool stopped = message.starts_with("stopped by a signal");
+    const bool stopped = message.starts_with(kStoppedBySignal);
     const std::string text =
         stopped ? fmt::format("{}{}: {}; to go on from there: ./pbms run {} --resume", program,
                               where, message, opt_.config)

@@ -26,6 +26,13 @@
 namespace pbms::coupler {
 namespace {
 
+// A checkpoint's files: the main part's and any other part's.
+void remove_checkpoint(const std::filesystem::path& dir, const YAML::Node& entry) {
+  std::error_code ec;
+  std::filesystem::remove(dir / entry["file"].as<std::string>(), ec);
+  for (const auto& part : entry["parts"]) std::filesystem::remove(dir / part.as<std::string>(), ec);
+}
+
 double wall_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -234,10 +241,7 @@ void RunRecord::stage_finished(const config::StageConfig& stage, const StageResu
   for (auto n : manifest_["stages"]) {
     if (n["name"].as<std::string>() == stage.name) {
       // A finished stage is not resumed: its checkpoints are done with.
-      for (const auto& c : n["checkpoints"]) {
-        std::error_code ec;
-        std::filesystem::remove(dir_ / c["file"].as<std::string>(), ec);
-      }
+      for (const auto& c : n["checkpoints"]) remove_checkpoint(dir_, c);
       n.remove("checkpoints");
       n["status"] = "ok";
       n["wall_s"] = wall_s;
@@ -262,13 +266,14 @@ void RunRecord::stage_failed(const std::string& stage, const std::string& kind,
   }
 }
 
-void RunRecord::checkpoint_written(const std::string& stage, int64_t step, const std::string& file,
-                                   int keep) {
+void RunRecord::checkpoint_written(const std::string& stage, int64_t step,
+                                   const std::vector<std::string>& files, int keep) {
   for (auto n : manifest_["stages"]) {
     if (n["name"].as<std::string>() != stage) continue;
     YAML::Node c;
     c["step"] = step;
-    c["file"] = file;
+    c["file"] = files.at(0);
+    for (std::size_t k = 1; k < files.size(); ++k) c["parts"].push_back(files[k]);
     n["checkpoints"].push_back(c);
     // Listed first, deleted after: a crash between the two leaves an extra
     // file, never a listed one that is gone.
@@ -278,8 +283,7 @@ void RunRecord::checkpoint_written(const std::string& stage, int64_t step, const
     for (int k = 0; k < count; ++k) {
       const YAML::Node old = n["checkpoints"][k];
       if (k < count - keep) {
-        std::error_code ec;
-        std::filesystem::remove(dir_ / old["file"].as<std::string>(), ec);
+        remove_checkpoint(dir_, old);
       } else {
         kept.push_back(old);
       }
@@ -289,13 +293,16 @@ void RunRecord::checkpoint_written(const std::string& stage, int64_t step, const
   write_manifest();
 }
 
-std::string RunRecord::newest_checkpoint(const std::string& stage) const {
+std::vector<std::string> RunRecord::newest_checkpoint(const std::string& stage) const {
   for (const auto& n : manifest_["stages"]) {
     if (n["name"].as<std::string>() != stage || !n["checkpoints"] || n["checkpoints"].size() == 0) {
       continue;
     }
     const YAML::Node last = n["checkpoints"][n["checkpoints"].size() - 1];
-    return (dir_ / last["file"].as<std::string>()).string();
+    std::vector<std::string> files{(dir_ / last["file"].as<std::string>()).string()};
+    for (const auto& part : last["parts"])
+      files.push_back((dir_ / part.as<std::string>()).string());
+    return files;
   }
   return {};
 }

@@ -56,13 +56,14 @@ class RunRecord {
   void stage_finished(const config::StageConfig& stage, const StageResults& results, double wall_s);
   void stage_failed(const std::string& stage, const std::string& kind,
                     const std::string& status = "failed");
-  // A complete checkpoint of `stage` after `step`: listed under the stage
-  // in the manifest; then all but the newest `keep` are deleted.
-  void checkpoint_written(const std::string& stage, int64_t step, const std::string& file,
-                          int keep);
-  // The newest complete checkpoint of `stage` the manifest lists (an
-  // absolute path), or empty.
-  [[nodiscard]] std::string newest_checkpoint(const std::string& stage) const;
+  // A complete checkpoint of `stage` after `step`, one file per part of the
+  // stage (the main part's first): listed under the stage in the manifest;
+  // then all but the newest `keep` are deleted.
+  void checkpoint_written(const std::string& stage, int64_t step,
+                          const std::vector<std::string>& files, int keep);
+  // The files of the newest complete checkpoint of `stage` the manifest
+  // lists (absolute paths, the main part's first), or none.
+  [[nodiscard]] std::vector<std::string> newest_checkpoint(const std::string& stage) const;
   // `status` is "failed", or "stopped" for a run stopped on request.
   void failed(const std::string& program, int rank, const std::string& stage, int64_t step,
               const std::string& message, const std::string& status = "failed");

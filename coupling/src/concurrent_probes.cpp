@@ -212,4 +212,46 @@ void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const 
   }
 }
 
+void ConcurrentProbes::save(CheckpointArchive& a) const {
+  // Sorted by id, so that the archive does not depend on the map's order.
+  std::vector<std::int64_t> ids;
+  ids.reserve(start_.size());
+  for (const auto& [id, x] : start_) ids.push_back(id);
+  std::sort(ids.begin(), ids.end());
+  std::vector<double> rows;
+  rows.reserve(4 * ids.size());
+  for (const auto id : ids) {
+    const Vec3& x = start_.at(id);
+    rows.insert(rows.end(), {static_cast<double>(id), x[0], x[1], x[2]});
+  }
+  a.put("probes/starts", std::move(rows));
+  a.put("probes/tracked_at", tracked_at_);
+  a.put("probes/track_time", track_t_);
+  for (std::size_t k = 0; k < tracked_s_.size(); ++k) {
+    a.put(fmt::format("probes/tracked_{}", k), tracked_s_[k]);
+  }
+  a.put("probes/profile_time", profile_t_);
+  for (std::size_t k = 0; k < profiles_.size(); ++k) {
+    a.put(fmt::format("probes/profile_{}", k), profiles_[k]);
+  }
+}
+
+void ConcurrentProbes::load(const CheckpointArchive& a) {
+  const auto& rows = a.get("probes/starts");
+  start_.clear();
+  for (std::size_t k = 0; k + 4 <= rows.size(); k += 4) {
+    start_[std::llround(rows[k])] = {rows[k + 1], rows[k + 2], rows[k + 3]};
+  }
+  tracked_at_ = a.get("probes/tracked_at");
+  track_t_ = a.get("probes/track_time");
+  for (std::size_t k = 0; k < tracked_s_.size(); ++k) {
+    tracked_s_[k] = a.get(fmt::format("probes/tracked_{}", k));
+  }
+  profile_t_ = a.get("probes/profile_time");
+  profiles_.assign(profile_t_.size(), {});
+  for (std::size_t k = 0; k < profiles_.size(); ++k) {
+    profiles_[k] = a.get(fmt::format("probes/profile_{}", k));
+  }
+}
+
 }  // namespace pbms::coupling

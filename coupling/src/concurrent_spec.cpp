@@ -124,6 +124,7 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
   s.kind = "concurrent";
   s.program = "dpd_driver";
   s.partners = {{"mpm_driver", "concurrent_mpm_part"}};
+  s.checkpoints = true;
   s.doc =
       "One body, some regions DPD particles (dpd_driver) and some elastic MPM points "
       "(mpm_driver), on one grid, exchanging interface data rank to rank every step";

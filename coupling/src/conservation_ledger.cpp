@@ -77,4 +77,45 @@ void ConservationLedger::report(StageResults& r, const std::string& prefix) cons
     r.add_column(table, names_[k], "eV", energies_[k]);
 }
 
+void ConservationLedger::save(CheckpointArchive& a, const Row* pending) const {
+  a.put("ledger/time", time_);
+  a.put("ledger/mass", mass_);
+  a.put("ledger/kinetic", kinetic_);
+  for (std::size_t c = 0; c < 3; ++c) a.put(fmt::format("ledger/momentum_{}", c), momentum_[c]);
+  for (std::size_t k = 0; k < names_.size(); ++k) a.put("ledger/" + names_[k], energies_[k]);
+  if (pending == nullptr) return;
+  std::vector<double> row{pending->mass, pending->momentum[0], pending->momentum[1],
+                          pending->momentum[2], pending->kinetic};
+  row.insert(row.end(), pending->energies.begin(), pending->energies.end());
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, row.data(), static_cast<int>(row.size()), MPI_DOUBLE,
+                           MPI_SUM, comm_),
+             "MPI_Allreduce (conservation ledger)");
+  row.insert(row.begin(), pending->time);
+  a.put("ledger/pending", std::move(row));
+}
+
+ConservationLedger::Row ConservationLedger::load(const CheckpointArchive& a) {
+  time_ = a.get("ledger/time");
+  mass_ = a.get("ledger/mass");
+  kinetic_ = a.get("ledger/kinetic");
+  for (std::size_t c = 0; c < 3; ++c) momentum_[c] = a.get(fmt::format("ledger/momentum_{}", c));
+  for (std::size_t k = 0; k < names_.size(); ++k) energies_[k] = a.get("ledger/" + names_[k]);
+  Row pending;
+  pending.time = std::nan("");
+  if (!a.has("ledger/pending")) return pending;
+  // Every rank gets the archive, and add() sums the row over the ranks:
+  // rank 0 takes the sums and the others nothing.
+  const auto& row = a.get("ledger/pending");
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  const double share = rank == 0 ? 1.0 : 0.0;
+  pending.time = row.at(0);
+  pending.mass = share * row.at(1);
+  for (std::size_t c = 0; c < 3; ++c) pending.momentum[c] = share * row.at(2 + c);
+  pending.kinetic = share * row.at(5);
+  pending.energies.assign(row.begin() + 6, row.end());
+  for (double& e : pending.energies) e *= share;
+  return pending;
+}
+
 }  // namespace pbms::coupling

@@ -24,4 +24,8 @@ double swap_scalar(MPI_Comm inter, MPI_Comm local, double mine) {
   return theirs;
 }
 
+bool either_program(MPI_Comm inter, MPI_Comm local, bool mine) {
+  return swap_scalar(inter, local, mine ? 1.0 : 0.0) > 0.0 || mine;
+}
+
 }  // namespace pbms::coupling

@@ -181,6 +181,23 @@ void DpdGridStep::set_rigid_velocity(std::uint32_t mask, const grid::Vec3& v) {
   engine_.set_group_velocity(mask, v);
 }
 
+std::vector<double> DpdGridStep::rigid_velocities() const {
+  std::vector<double> out;
+  for (const auto& pv : bc_.point_velocities)
+    out.insert(out.end(), pv.velocity.begin(), pv.velocity.end());
+  return out;
+}
+
+void DpdGridStep::restore_rigid_velocities(const std::vector<double>& v) {
+  if (v.size() != 3 * bc_.point_velocities.size()) {
+    throw Error(fmt::format("DPD/MPM grid: a checkpoint with {} rigid velocities for {} groups",
+                            v.size() / 3, bc_.point_velocities.size()));
+  }
+  for (std::size_t b = 0; b < bc_.point_velocities.size(); ++b) {
+    for (std::size_t a = 0; a < 3; ++a) bc_.point_velocities[b].velocity[a] = v[3 * b + a];
+  }
+}
+
 // A free body's nodes hold the material that shares them as well as the
 // body's own particles. Holding them at the body's velocity pushes that
 // material, and setting the body's particles to it (rather than to what

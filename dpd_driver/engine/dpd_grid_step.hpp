@@ -95,6 +95,11 @@ class DpdGridStep {
   // The velocity a rigid (not free) group of settings.rigid moves at from
   // the next step on (a grip on a velocity ramp).
   void set_rigid_velocity(std::uint32_t mask, const grid::Vec3& v);
+  // The rigid groups' velocities now, settings.rigid's order, three each (a
+  // free body's changes every step, a grip's on its ramp), for a
+  // checkpoint; and back, as the velocities the next step holds them at.
+  [[nodiscard]] std::vector<double> rigid_velocities() const;
+  void restore_rigid_velocities(const std::vector<double>& v);
 
   // Whether each compute_forces also tallies the pair energy
   // (DpdEngine::last_tally), for a ledger kept every step: a few operations

@@ -17,6 +17,7 @@
 #include "dpd_stage_params.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
+#include "engine_checkpoint.hpp"
 #include "pbms/analysis/quasi_static_pull.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
@@ -27,6 +28,7 @@
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/exchange_report.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
+#include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/h5md_writer.hpp"
 #include "pbms/units.hpp"
@@ -117,6 +119,18 @@ struct TensionSeries {
       r.add_scalar("max_stress", *std::max_element(stress.begin(), stress.end()), "GPa");
     }
   }
+  void save(CheckpointArchive& a) const {
+    a.put("tension/time", time);
+    a.put("tension/strain", strain);
+    a.put("tension/stress", stress);
+    a.put("tension/grip_stress", grip_stress);
+  }
+  void load(const CheckpointArchive& a) {
+    time = a.get("tension/time");
+    strain = a.get("tension/strain");
+    stress = a.get("tension/stress");
+    grip_stress = a.get("tension/grip_stress");
+  }
 };
 
 std::vector<std::uint32_t> motion_masks(const DpdPartOfBody& part) {
@@ -128,7 +142,10 @@ std::vector<std::uint32_t> motion_masks(const DpdPartOfBody& part) {
 // The DPD part's particles, one H5MD frame, each rank writing its own.
 class DpdPartTrajectory {
  public:
-  DpdPartTrajectory(const DpdEngine& e, const std::filesystem::path& path) {
+  // A resumed run (`resumed_after`, the checkpoint's step) goes on with the
+  // file the interrupted one wrote, its later frames dropped.
+  DpdPartTrajectory(const DpdEngine& e, const std::filesystem::path& path,
+                    std::optional<std::int64_t> resumed_after = std::nullopt) {
     H5mdWriter::Options o;
     o.path = path.string();
     o.creator_version = "dpd_driver (concurrent)";
@@ -137,7 +154,8 @@ class DpdPartTrajectory {
     const DpdParticles& p = e.particles();
     const std::vector<std::int64_t> ids(p.id.begin(), p.id.begin() + static_cast<long>(e.owned()));
     const std::vector<int> types(p.type.begin(), p.type.begin() + static_cast<long>(e.owned()));
-    writer_ = std::make_unique<H5mdWriter>(e.comm(), o, ids, types);
+    writer_ = resumed_after ? H5mdWriter::reopen(e.comm(), o, ids, *resumed_after)
+                            : std::make_unique<H5mdWriter>(e.comm(), o, ids, types);
     const OrthogonalBox& box = e.domain().box();
     for (int a = 0; a < 3; ++a) edges_[static_cast<std::size_t>(a)] = box.length(a);
   }
@@ -179,6 +197,10 @@ class DpdLedger {
     ledger_.add(pending_);
   }
   [[nodiscard]] const coupling::ConservationLedger& table() const { return ledger_; }
+  // Collective: the rows, and the pending one whose energies the next
+  // force pass tallies.
+  void save(CheckpointArchive& a) const { ledger_.save(a, &pending_); }
+  void load(const CheckpointArchive& a) { pending_ = ledger_.load(a); }
 
  private:
   coupling::ConservationLedger ledger_;
@@ -233,6 +255,16 @@ class DpdPartSampler {
   void report_tension(StageResults& r) const {
     if (tension_) tension_->report(r);
   }
+  void save(CheckpointArchive& a) const {
+    if (tension_) tension_->save(a);
+    a.put("opening/time", opening_t_);
+    a.put("opening/value", opening_);
+  }
+  void load(const CheckpointArchive& a) {
+    if (tension_) tension_->load(a);
+    opening_t_ = a.get("opening/time");
+    opening_ = a.get("opening/value");
+  }
 
  private:
   void sample_tension(std::int64_t n) {
@@ -283,6 +315,34 @@ void report_bytes(StageResults& r, MPI_Comm comm, const coupling::ExchangeProfil
   r.add_scalar("partner_bytes_per_step", bytes[1] / n, "1");
 }
 
+// Everything the DPD part needs to go on after a step as if never stopped:
+// the engine's particles, the rigid groups' velocities, and what it has
+// measured so far.
+struct DpdPartCheckpoint {
+  DpdPartOfBody& part;
+  coupling::ConcurrentProbes& probes;
+  DpdPartSampler& sampler;
+  DpdLedger& ledger;
+
+  // Collective over the part's ranks.
+  [[nodiscard]] CheckpointArchive save() const {
+    CheckpointArchive a;
+    put_engine_state(a, part.engine(), &part.grid());
+    probes.save(a);
+    sampler.save(a);
+    ledger.save(a);
+    return a;
+  }
+  // Returns the step the archive was written after.
+  std::int64_t load(const CheckpointArchive& a) {
+    const std::int64_t step = take_engine_state(a, part.engine(), &part.grid());
+    probes.load(a);
+    sampler.load(a);
+    ledger.load(a);
+    return step;
+  }
+};
+
 }  // namespace
 
 config::StageKindSpec ConcurrentStage::spec() {
@@ -314,30 +374,52 @@ void ConcurrentStage::run(StageContext& ctx) {
   DpdPartSampler sampler(ctx.comm(), inter, part, view, probes);
   DpdLedger ledger(ctx.comm());
   grid.tally_each_step(true);
+  // Both parts write a checkpoint at the same steps; a step after one
+  // chooses the partners afresh (concurrent_mpm_part), as a resumed run's
+  // first step does.
+  StageCheckpoints checkpoints(ctx);
+  checkpoints.run_as_part(
+      "", [&](bool mine) { return coupling::either_program(inter, ctx.comm(), mine); });
+  DpdPartCheckpoint state{part, probes, sampler, ledger};
+  const std::filesystem::path particles_file = ctx.stage_dir() / "dpd_particles.h5md";
   std::unique_ptr<DpdPartTrajectory> trajectory;
-  if (cp.particles_every > 0) {
-    trajectory =
-        std::make_unique<DpdPartTrajectory>(engine, ctx.stage_dir() / "dpd_particles.h5md");
-    trajectory->write(engine, 0, 0.0);
+  std::int64_t first_step = 1;
+  if (checkpoints.enabled() && checkpoints.resuming()) {
+    first_step = state.load(checkpoints.resume_archive()) + 1;
+    if (cp.particles_every > 0) {
+      trajectory = std::make_unique<DpdPartTrajectory>(engine, particles_file, first_step - 1);
+    }
+  } else {
+    if (cp.particles_every > 0) {
+      trajectory = std::make_unique<DpdPartTrajectory>(engine, particles_file);
+      trajectory->write(engine, 0, 0.0);
+    }
+    probes.track(0, view.view(engine));
+    ledger.motion(0.0, view.view(engine), engine);
+    sampler.sample(0);
   }
-  probes.track(0, view.view(engine));
-  ledger.motion(0.0, view.view(engine), engine);
-  sampler.sample(0);
   const auto started = std::chrono::steady_clock::now();
-  for (std::int64_t n = 1; n <= cp.steps; ++n) {
+  for (std::int64_t n = first_step; n <= cp.steps; ++n) {
     set_current_step(n);
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kDpd));
     ledger.energies(engine);
     const auto now = view.view(engine);
-    ledger.motion(static_cast<double>(n) * cp.time_step, now, engine);
+    const double t = static_cast<double>(n) * cp.time_step;
+    ledger.motion(t, now, engine);
     probes.track(n, now);
     if (n % cp.sample_every == 0 || n == cp.steps) sampler.sample(n);
-    if (trajectory && (n % cp.particles_every == 0 || n == cp.steps)) {
-      trajectory->write(engine, n, static_cast<double>(n) * cp.time_step);
+    if (trajectory && (n % cp.particles_every == 0 || n == cp.steps))
+      trajectory->write(engine, n, t);
+    const bool stop = checkpoints.stop_agreed(n) && n < cp.steps;
+    if (stop || checkpoints.due(n, cp.steps)) {
+      const std::string file = checkpoints.write(n, t, [&] { return state.save(); });
+      if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, cp.steps, file));
     }
-    ctx.progress(n, cp.steps, static_cast<double>(n) * cp.time_step, "concurrent");
+    ctx.progress(n, cp.steps, t, "concurrent");
   }
+  // Rates and exchange figures are of the steps this run made.
+  const std::int64_t steps_run = cp.steps - first_step + 1;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   // The stepping's exchanges, without the closing pass's.
@@ -346,6 +428,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   ledger.energies(engine);
 
   auto& r = ctx.results();
+  checkpoints.report(r);
   if (trajectory)
     r.files.push_back((std::filesystem::path(ctx.stage()) / "dpd_particles.h5md").string());
   r.attributes["interface"] = cp.interface_name;
@@ -355,8 +438,8 @@ void ConcurrentStage::run(StageContext& ctx) {
   r.add_scalar("momentum_change", ledger.table().momentum_drift(inter) / (mass * bar_speed(cp)),
                "1");
   sampler.report(r);
-  if (cp.steps > 0 && seconds > 0.0) {
-    r.add_scalar("steps_per_second", static_cast<double>(cp.steps) / seconds, "1/s");
+  if (steps_run > 0 && seconds > 0.0) {
+    r.add_scalar("steps_per_second", static_cast<double>(steps_run) / seconds, "1/s");
   }
   probes.report(r, "dpd");
   ledger.table().report(r, "dpd");
@@ -364,8 +447,8 @@ void ConcurrentStage::run(StageContext& ctx) {
   // With no particle of its own (a body all MPM) this part only answered
   // mpm_driver's exchanges; figures for it would describe nothing.
   if (part.dpd_particles() > 0) {
-    coupling::report_exchanges(r, ctx.comm(), "dpd", nodal, partners, cp.steps, seconds);
-    report_bytes(r, ctx.comm(), nodal, partners, cp.steps);
+    coupling::report_exchanges(r, ctx.comm(), "dpd", nodal, partners, steps_run, seconds);
+    report_bytes(r, ctx.comm(), nodal, partners, steps_run);
   } else {
     r.attributes["dpd_exchange_note"] =
         "the body holds no DPD particle: dpd_driver only answered mpm_driver's exchanges, and "

@@ -16,6 +16,7 @@
 #include "dpd_trajectory.hpp"
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
+#include "engine_checkpoint.hpp"
 #include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 
@@ -137,10 +138,7 @@ struct DpdRun {
   // energy_drift is measured from.
   CheckpointArchive save(const ThermoState& initial) const {
     CheckpointArchive a;
-    const DpdEngine::State state = engine.gather_state();
-    a.put("engine/particles", state.rows);
-    a.put("engine/rank_counts", state.counts);
-    a.put("engine/step", static_cast<double>(engine.step_count()));
+    put_engine_state(a, engine, grid_step);
     a.put("run/initial_energies",
           std::vector<double>{initial.kinetic, initial.potential, initial.internal});
     probes.save(a);
@@ -151,8 +149,7 @@ struct DpdRun {
   // The state `save` wrote; returns the step it was written after and sets
   // `initial`.
   std::int64_t load(const CheckpointArchive& a, ThermoState& initial) {
-    const auto step = static_cast<std::int64_t>(a.scalar("engine/step"));
-    engine.restore_state({a.get("engine/particles"), a.get("engine/rank_counts")}, step);
+    const std::int64_t step = take_engine_state(a, engine, grid_step);
     const auto& e = a.get("run/initial_energies");
     initial.kinetic = e.at(0);
     initial.potential = e.at(1);
@@ -228,17 +225,10 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
              impact ? &*impact : nullptr,
              tension ? &*tension : nullptr};
 
-  // Checkpoints do not hold a grid model's state yet.
   StageCheckpoints checkpoints(ctx);
-  const bool checkpointed = checkpoints.enabled() && !grid_step;
-  if (checkpoints.enabled() && !checkpointed) {
-    ctx.results().add_warning(
-        "no checkpoints written: checkpoints of a dpd_run do not yet hold a grid model's state; "
-        "a resumed run starts this stage again");
-  }
   ThermoState initial;
   std::int64_t first_step = 1;
-  if (checkpointed && checkpoints.resuming()) {
+  if (checkpoints.enabled() && checkpoints.resuming()) {
     first_step = run.load(checkpoints.resume_archive(), initial) + 1;
     trajectory.resume(engine, first_step - 1);
   } else {
@@ -255,16 +245,10 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
       trajectory.write_frame(engine, n, run.dt());
     }
     const bool stop = checkpoints.stop_agreed(n) && n < p.steps;
-    if (checkpointed && (stop || checkpoints.due(n, p.steps))) {
+    if (stop || checkpoints.due(n, p.steps)) {
       const std::string file = checkpoints.write(n, static_cast<double>(n) * run.dt(),
                                                  [&] { return run.save(initial); });
       if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, p.steps, file));
-    }
-    if (stop) {
-      throw StageFailure(fmt::format(
-          "stopped by a signal after step {} of {}; this stage writes no checkpoints, and a "
-          "resumed run starts it again",
-          n, p.steps));
     }
     ctx.progress(n, p.steps, static_cast<double>(n) * run.dt(), "dpd");
   }

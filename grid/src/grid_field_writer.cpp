@@ -1,5 +1,6 @@
 #include "pbms/grid/grid_field_writer.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <filesystem>
@@ -167,43 +168,9 @@ void write_int64_attribute(hid_t obj, const std::string& name, std::int64_t valu
 
 GridFieldWriter::GridFieldWriter(MPI_Comm comm, const std::string& base,
                                  const grid::RegularGrid& grid, const grid::NodeBox& owned)
-    : comm_(comm),
-      grid_(grid),
-      owned_(owned),
-      h5_path_(base + ".h5"),
-      xdmf_path_(base + ".xdmf"),
-      h5_name_(std::filesystem::path(h5_path_).filename().string()) {
-  MPI_Comm_rank(comm, &rank_);
-
-  std::string error;
-  if (std::filesystem::path(base).filename().empty()) {
-    error = fmt::format("grid output: base path '{}' names a directory, not a file", base);
-  } else if (h5_name_.find_first_of(": \t\n") != std::string::npos) {
-    // The XDMF reference "file.h5:/path" is split at the colon and taken
-    // apart at white space.
-    error =
-        fmt::format("grid output: file name '{}' must not contain ':' or white space", h5_name_);
-  } else if (!owned.empty() && owned.intersected(grid.node_box()) != owned) {
-    error = fmt::format("{}: owned node box {} reaches outside the grid's nodes {}", h5_path_,
-                        describe(owned), describe(grid.node_box()));
-  }
-  throw_if_any(comm, error);
-
-  Fnv1a same;
-  same.add(base).add(grid.cell_size());
-  for (int d = 0; d < 3; ++d) {
-    same.add(grid.origin()[d]).add(static_cast<std::uint64_t>(grid.cells()[d]));
-  }
-  require_same_everywhere(
-      comm, same.value(),
-      fmt::format("{}: ranks disagree on the output path or the grid", h5_path_));
-  require_tiling(comm, grid, owned, h5_path_);
-
+    : GridFieldWriter(comm, base, grid, owned, NoFileYet{}) {
   file_ = h5::create_truncate(h5_path_, comm);
-  dxpl_ = h5::Handle(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  if (size > 1) H5Pset_dxpl_mpio(dxpl_.id(), H5FD_MPIO_COLLECTIVE);
+  make_transfer_list();
 
   // For readers without XDMF (h5py, MATLAB): the geometry, in x, y, z order.
   const auto& o = grid.origin();
@@ -217,13 +184,143 @@ GridFieldWriter::GridFieldWriter(MPI_Comm comm, const std::string& base,
 
   // A description left from an earlier run would point into the file just
   // truncated.
-  error.clear();
+  std::string error;
   if (rank_ == 0) {
     std::error_code ec;
     std::filesystem::remove(xdmf_path_, ec);
     if (ec) error = fmt::format("cannot remove stale '{}': {}", xdmf_path_, ec.message());
   }
   throw_if_any(comm, error);
+}
+
+// Checked, with no file open yet: the public constructor creates one,
+// reopen() opens the existing one.
+GridFieldWriter::GridFieldWriter(MPI_Comm comm, const std::string& base,
+                                 const grid::RegularGrid& grid, const grid::NodeBox& owned,
+                                 NoFileYet /*unused*/)
+    : comm_(comm),
+      grid_(grid),
+      owned_(owned),
+      h5_path_(base + ".h5"),
+      xdmf_path_(base + ".xdmf"),
+      h5_name_(std::filesystem::path(h5_path_).filename().string()) {
+  MPI_Comm_rank(comm, &rank_);
+  check_arguments(base);
+}
+
+void GridFieldWriter::check_arguments(const std::string& base) const {
+  std::string error;
+  if (std::filesystem::path(base).filename().empty()) {
+    error = fmt::format("grid output: base path '{}' names a directory, not a file", base);
+  } else if (h5_name_.find_first_of(": \t\n") != std::string::npos) {
+    // The XDMF reference "file.h5:/path" is split at the colon and taken
+    // apart at white space.
+    error =
+        fmt::format("grid output: file name '{}' must not contain ':' or white space", h5_name_);
+  } else if (!owned_.empty() && owned_.intersected(grid_.node_box()) != owned_) {
+    error = fmt::format("{}: owned node box {} reaches outside the grid's nodes {}", h5_path_,
+                        describe(owned_), describe(grid_.node_box()));
+  }
+  throw_if_any(comm_, error);
+
+  Fnv1a same;
+  same.add(base).add(grid_.cell_size());
+  for (int d = 0; d < 3; ++d) {
+    same.add(grid_.origin()[d]).add(static_cast<std::uint64_t>(grid_.cells()[d]));
+  }
+  require_same_everywhere(
+      comm_, same.value(),
+      fmt::format("{}: ranks disagree on the output path or the grid", h5_path_));
+  require_tiling(comm_, grid_, owned_, h5_path_);
+}
+
+void GridFieldWriter::make_transfer_list() {
+  dxpl_ = h5::Handle(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
+  int size = 1;
+  MPI_Comm_size(comm_, &size);
+  if (size > 1) H5Pset_dxpl_mpio(dxpl_.id(), H5FD_MPIO_COLLECTIVE);
+}
+
+std::unique_ptr<GridFieldWriter> GridFieldWriter::reopen(MPI_Comm comm, const std::string& base,
+                                                         const grid::RegularGrid& grid,
+                                                         const grid::NodeBox& owned,
+                                                         std::int64_t last_step) {
+  std::unique_ptr<GridFieldWriter> w(new GridFieldWriter(comm, base, grid, owned, NoFileYet{}));
+  FramesOnFile frames;
+  std::string error;
+  if (w->rank_ == 0) {
+    try {
+      frames = w->frames_on_file(last_step);
+    } catch (const std::exception& e) {
+      error = fmt::format("{}: cannot go on with it: {}", w->h5_path_, e.what());
+    }
+  }
+  throw_if_any(comm, error);
+  // Every rank makes the same metadata calls: the steps travel from rank 0.
+  for (auto* steps : {&frames.kept, &frames.dropped}) {
+    long long n = static_cast<long long>(steps->size());
+    MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, comm);
+    steps->resize(static_cast<std::size_t>(n));
+    MPI_Bcast(steps->data(), static_cast<int>(n), MPI_INT64_T, 0, comm);
+  }
+  w->file_ = h5::open_read_write(w->h5_path_, comm);
+  w->make_transfer_list();
+  for (const std::int64_t step : frames.dropped) {
+    h5::delete_link_if_exists(w->file_.id(), step_group(step));
+  }
+  w->steps_.insert(frames.kept.begin(), frames.kept.end());
+  w->frames_ = static_cast<std::int64_t>(frames.kept.size());
+  w->frame_xml_ = std::move(frames.xml);
+  error.clear();
+  if (w->rank_ == 0) {
+    try {
+      w->write_xdmf();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  throw_if_any(comm, error);
+  return w;
+}
+
+GridFieldWriter::FramesOnFile GridFieldWriter::frames_on_file(std::int64_t last_step) const {
+  h5::Handle f(H5Fopen(h5_path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (f.id() < 0) throw Error("cannot open it to read");
+  std::vector<std::string> names;
+  const auto collect = [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+    return 0;
+  };
+  H5Literate(f.id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect, &names);
+  std::vector<std::pair<std::int64_t, std::string>> frames;  // step, group
+  for (const auto& name : names) {
+    if (name.rfind("step_", 0) == 0) frames.emplace_back(std::stoll(name.substr(5)), name);
+  }
+  std::sort(frames.begin(), frames.end());
+  FramesOnFile out;
+  for (const auto& [step, name] : frames) {
+    if (step > last_step) {
+      out.dropped.push_back(step);
+      continue;
+    }
+    h5::Handle g(H5Gopen2(f.id(), name.c_str(), H5P_DEFAULT), H5Gclose);
+    double time = 0.0;
+    h5::Handle t(H5Aopen(g.id(), "time", H5P_DEFAULT), H5Aclose);
+    H5Aread(t.id(), H5T_NATIVE_DOUBLE, &time);
+    std::vector<std::string> datasets;
+    H5Literate(g.id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect, &datasets);
+    std::vector<Field> fields;
+    for (const auto& d : datasets) {
+      h5::Handle ds(H5Dopen2(g.id(), d.c_str(), H5P_DEFAULT), H5Dclose);
+      h5::Handle space(H5Dget_space(ds.id()), H5Sclose);
+      Field field{d, h5::read_string_attribute(ds.id(), "unit"),
+                  H5Sget_simple_extent_ndims(space.id()) == 4 ? 3 : 1, nullptr};
+      fields.push_back(std::move(field));
+    }
+    out.kept.push_back(step);
+    out.xml.push_back(frame_xml(step, time, fields));
+  }
+  return out;
 }
 
 void GridFieldWriter::write_frame(std::int64_t step, double time,

@@ -32,6 +32,13 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   [[nodiscard]] coupling::SpaceBox points_box() const override;
   void take_reactions(std::vector<coupling::Vec3> force) override;
 
+  // Forgets the followed points, as a migration does: the next step
+  // chooses the partners afresh from the points as they are stored. A
+  // checkpoint of a concurrent stage calls this, so that the run that wrote
+  // it and a run resumed from it (which starts with nothing followed) go on
+  // alike.
+  void forget_followed_points() { ids_.clear(); }
+
  private:
   // Follows the points since the last call: positions unwrapped across
   // periodic faces. Returns false when the points changed (a migration).

@@ -70,6 +70,7 @@ class MpmEngine {
   [[nodiscard]] const MpmModel& model() const { return model_; }
   // The loads a coupling scheme adds to (point forces from another program).
   [[nodiscard]] grid::BoundaryConditions& boundary_conditions() { return model_.bc; }
+  [[nodiscard]] const grid::BoundaryConditions& boundary_conditions() const { return model_.bc; }
   [[nodiscard]] grid::MpmSolver& solver() { return *solver_; }
   [[nodiscard]] const grid::MpmSolver& solver() const { return *solver_; }
   [[nodiscard]] const grid::GridPartition& partition() const { return partition_; }

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "engine_checkpoint.hpp"
 #include "mpm_part_of_body.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
@@ -16,6 +18,7 @@
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/exchange_report.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
+#include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 #include "pbms/grid/for_each_node.hpp"
 #include "pbms/grid/grid_field_writer.hpp"
@@ -109,17 +112,26 @@ class MpmPartSampler {
 // particles_every steps.
 class MpmPartOutput {
  public:
-  MpmPartOutput(StageContext& ctx, const coupling::ConcurrentParams& cp, const MpmEngine& engine) {
+  // A resumed run (`resumed_after`, the checkpoint's step) goes on with the
+  // files the interrupted one wrote, their later frames dropped.
+  MpmPartOutput(StageContext& ctx, const coupling::ConcurrentParams& cp, const MpmEngine& engine,
+                std::optional<std::int64_t> resumed_after) {
     H5mdWriter::Options o;
     o.path = (ctx.stage_dir() / "mpm_particles.h5md").string();
     o.creator_version = "mpm_driver (concurrent)";
     o.periodic = cp.periodic;
     o.velocities = true;
+    const std::string grid = (ctx.stage_dir() / "mpm_grid").string();
+    if (resumed_after) {
+      points_ = H5mdWriter::reopen(ctx.comm(), o, engine.points().id, *resumed_after);
+      grid_ =
+          GridFieldWriter::reopen(ctx.comm(), grid, cp.grid, engine.owned_nodes(), *resumed_after);
+      return;
+    }
     points_ = std::make_unique<H5mdWriter>(ctx.comm(), o, engine.points().id,
                                            std::vector<int>(engine.points().size(), 1));
     write_points(*points_, engine, 0, 0.0);
-    grid_ = std::make_unique<GridFieldWriter>(ctx.comm(), (ctx.stage_dir() / "mpm_grid").string(),
-                                              cp.grid, engine.owned_nodes());
+    grid_ = std::make_unique<GridFieldWriter>(ctx.comm(), grid, cp.grid, engine.owned_nodes());
   }
   void write(const MpmEngine& engine, std::int64_t n, double t) {
     write_grid(*grid_, engine, n, t);
@@ -145,6 +157,31 @@ void add_to_ledger(coupling::ConservationLedger& ledger, const MpmEngine& engine
   row.energies = {energy.stored, energy.dissipated};
   ledger.add(std::move(row));
 }
+
+// Everything the MPM part needs to go on after a step as if never stopped:
+// the engine's points, the held groups' velocities, and what it has
+// measured so far.
+struct MpmPartCheckpoint {
+  MpmEngine& engine;
+  coupling::ConcurrentProbes& probes;
+  coupling::ConservationLedger& ledger;
+
+  // Collective over the part's ranks.
+  [[nodiscard]] CheckpointArchive save() const {
+    CheckpointArchive a;
+    put_engine_state(a, engine);
+    probes.save(a);
+    ledger.save(a);
+    return a;
+  }
+  // Returns the step the archive was written after.
+  std::int64_t load(const CheckpointArchive& a) {
+    const std::int64_t step = take_engine_state(a, engine);
+    probes.load(a);
+    (void)ledger.load(a);  // this part adds its rows as it goes: none pending
+    return step;
+  }
+};
 
 }  // namespace
 
@@ -179,23 +216,46 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   (void)coupling::swap_scalar(inter, ctx.comm(), mass);
   coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"});
   MpmPartSampler sampler(ctx.comm(), inter, cp, engine, probes);
+  // The checkpoints dpd_driver's part writes, at the same steps (a step
+  // after one chooses the partners afresh, as a resumed run's first does).
+  StageCheckpoints checkpoints(ctx);
+  checkpoints.run_as_part(
+      "mpm", [&](bool mine) { return coupling::either_program(inter, ctx.comm(), mine); });
+  MpmPartCheckpoint state{engine, probes, ledger};
   std::unique_ptr<MpmPartOutput> output;
-  if (cp.particles_every > 0) output = std::make_unique<MpmPartOutput>(ctx, cp, engine);
-  probes.track(0, view_of(engine.points()));
-  add_to_ledger(ledger, engine, 0, cp.time_step);
-  sampler.sample(0);
+  std::int64_t first_step = 1;
+  if (checkpoints.enabled() && checkpoints.resuming()) {
+    first_step = state.load(checkpoints.resume_archive()) + 1;
+    if (cp.particles_every > 0) {
+      output = std::make_unique<MpmPartOutput>(ctx, cp, engine, first_step - 1);
+    }
+  } else {
+    if (cp.particles_every > 0) {
+      output = std::make_unique<MpmPartOutput>(ctx, cp, engine, std::nullopt);
+    }
+    probes.track(0, view_of(engine.points()));
+    add_to_ledger(ledger, engine, 0, cp.time_step);
+    sampler.sample(0);
+  }
   const auto started = std::chrono::steady_clock::now();
-  for (std::int64_t n = 1; n <= cp.steps; ++n) {
+  for (std::int64_t n = first_step; n <= cp.steps; ++n) {
     set_current_step(n);
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kMpm));
     probes.track(n, view_of(engine.points()));
     add_to_ledger(ledger, engine, n, cp.time_step);
     if (n % cp.sample_every == 0 || n == cp.steps) sampler.sample(n);
-    if (output && (n % cp.particles_every == 0 || n == cp.steps)) {
-      output->write(engine, n, static_cast<double>(n) * cp.time_step);
+    const double t = static_cast<double>(n) * cp.time_step;
+    if (output && (n % cp.particles_every == 0 || n == cp.steps)) output->write(engine, n, t);
+    const bool stop = checkpoints.stop_agreed(n) && n < cp.steps;
+    if (stop || checkpoints.due(n, cp.steps)) {
+      const std::string file = checkpoints.write(n, t, [&] { return state.save(); });
+      part.side().forget_followed_points();
+      if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, cp.steps, file));
     }
   }
+  // Exchange figures are of the steps this run made.
+  const std::int64_t steps_run = cp.steps - first_step + 1;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   // The stepping's exchanges, without the closing pass's.
@@ -203,13 +263,14 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   scheme.close();
   (void)ledger.momentum_drift(inter);  // dpd_driver reports it
   auto& r = ctx.results();
+  checkpoints.report(r);
   if (output) MpmPartOutput::list_files(r, ctx.stage());
   probes.report(r, "mpm");
   ledger.report(r, "mpm");
   // With no point of its own (a body all DPD) this part only answered
   // dpd_driver's exchanges; figures for it would describe nothing.
   if (engine.total_points() > 0) {
-    coupling::report_exchanges(r, ctx.comm(), "mpm", nodal, partners, cp.steps, seconds);
+    coupling::report_exchanges(r, ctx.comm(), "mpm", nodal, partners, steps_run, seconds);
   } else {
     r.attributes["mpm_exchange_note"] =
         "the body holds no MPM point: mpm_driver only answered dpd_driver's exchanges, and its "

@@ -202,4 +202,22 @@ void ramp_point_velocities(const MpmModel& model, grid::BoundaryConditions& bc, 
   }
 }
 
+std::vector<double> point_velocities_of(const grid::BoundaryConditions& bc) {
+  std::vector<double> out;
+  for (const auto& pv : bc.point_velocities) {
+    out.insert(out.end(), pv.velocity.begin(), pv.velocity.end());
+  }
+  return out;
+}
+
+void restore_point_velocities(grid::BoundaryConditions& bc, const std::vector<double>& v) {
+  if (v.size() != 3 * bc.point_velocities.size()) {
+    throw Error(fmt::format("MPM: a checkpoint with {} held-group velocities for {} groups",
+                            v.size() / 3, bc.point_velocities.size()));
+  }
+  for (std::size_t k = 0; k < bc.point_velocities.size(); ++k) {
+    for (std::size_t a = 0; a < 3; ++a) bc.point_velocities[k].velocity[a] = v[3 * k + a];
+  }
+}
+
 }  // namespace pbms::mpm

@@ -50,6 +50,11 @@ struct MpmModel {
 // (before that step); entries past their ramp are left alone.
 void ramp_point_velocities(const MpmModel& model, grid::BoundaryConditions& bc, std::int64_t step,
                            double dt);
+// The held groups' velocities now (three each, in bc's order), for a
+// checkpoint: a ramped group's after its ramp is not the one it starts at.
+// And back; throws pbms::Error when the counts differ.
+[[nodiscard]] std::vector<double> point_velocities_of(const grid::BoundaryConditions& bc);
+void restore_point_velocities(grid::BoundaryConditions& bc, const std::vector<double>& v);
 
 // Reads the stage's `materials` entries that `bodies` use, converting
 // densities and moduli to solver units when `metal_units`.

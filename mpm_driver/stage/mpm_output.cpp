@@ -24,15 +24,21 @@ MpmOutput::MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
           std::make_unique<H5mdWriter>(engine.comm(), o, ids, std::vector<int>(ids.size(), 0));
     }
   }
-  if (params.grid_every > 0) {
-    grid_ = std::make_unique<GridFieldWriter>(engine.comm(), (stage_dir / "grid").string(), g,
-                                              engine.owned_nodes());
+  grid_base_ = (stage_dir / "grid").string();
+  if (params.grid_every > 0 && !resuming) {
+    grid_ = std::make_unique<GridFieldWriter>(engine.comm(), grid_base_, g, engine.owned_nodes());
   }
 }
 
 void MpmOutput::resume(const MpmEngine& engine, std::int64_t last_step) {
-  if (params_.particles_every <= 0) return;
-  particles_ = H5mdWriter::reopen(engine.comm(), particle_options_, engine.points().id, last_step);
+  if (params_.particles_every > 0) {
+    particles_ =
+        H5mdWriter::reopen(engine.comm(), particle_options_, engine.points().id, last_step);
+  }
+  if (params_.grid_every > 0) {
+    grid_ = GridFieldWriter::reopen(engine.comm(), grid_base_, engine.model().grid,
+                                    engine.owned_nodes(), last_step);
+  }
 }
 
 void MpmOutput::write(const MpmEngine& engine, std::int64_t step, double t) {

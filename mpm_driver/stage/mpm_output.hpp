@@ -18,14 +18,14 @@ namespace pbms::mpm {
 class MpmOutput {
  public:
   // Files go to `stage_dir`; `stage` names it in files().
-  // A run that will resume() creates no particle file: it goes on with one.
+  // A run that will resume() creates no file: it goes on with those it has.
   MpmOutput(const MpmEngine& engine, const MpmRunParams& params,
             const std::filesystem::path& stage_dir, const std::string& stage,
             bool resuming = false);
 
   // Collective, for a run resumed from a checkpoint after `last_step`:
-  // goes on with the particle file the interrupted run wrote, its later
-  // frames dropped (H5mdWriter::reopen).
+  // goes on with the particle and grid files the interrupted run wrote,
+  // their later frames dropped (H5mdWriter::reopen, GridFieldWriter::reopen).
   void resume(const MpmEngine& engine, std::int64_t last_step);
   // The frames due at this step. Collective.
   void write(const MpmEngine& engine, std::int64_t step, double t);
@@ -40,6 +40,7 @@ class MpmOutput {
   std::string stage_;
   std::array<double, 3> edges_{};
   H5mdWriter::Options particle_options_;
+  std::string grid_base_;
   std::unique_ptr<H5mdWriter> particles_;
   std::unique_ptr<GridFieldWriter> grid_;
 };

@@ -13,6 +13,7 @@
 #include "probe_series.hpp"
 #include "rod_tension_analysis.hpp"
 
+#include "engine_checkpoint.hpp"
 #include "pbms/driver/stage_checkpoints.hpp"
 
 namespace pbms::mpm {
@@ -47,23 +48,13 @@ void MpmRunStage::run(StageContext& ctx) {
   if (params.wave_front) bar.emplace(*params.wave_front, engine, dt, steps, ctx.stage());
   std::optional<RodTensionAnalysis> tension;
   if (params.tension) tension.emplace(*params.tension, engine, params.metal_units, ctx.stage());
-  // Checkpoints do not hold the XDMF grid file yet.
   StageCheckpoints checkpoints(ctx);
-  const bool checkpointed = checkpoints.enabled() && params.grid_every <= 0;
-  if (checkpoints.enabled() && !checkpointed) {
-    ctx.results().add_warning(
-        "no checkpoints written: checkpoints of an mpm_run do not yet go on with a grid file "
-        "(grid_every > 0); a resumed run starts this stage again");
-  }
-  const bool resuming = checkpointed && checkpoints.resuming();
+  const bool resuming = checkpoints.enabled() && checkpoints.resuming();
   MpmOutput output(engine, params, ctx.stage_dir(), ctx.stage(), resuming);
 
   const auto save = [&] {
     CheckpointArchive a;
-    const MpmEngine::State state = engine.gather_state();
-    a.put("engine/points", state.rows);
-    a.put("engine/rank_counts", state.counts);
-    a.put("engine/step", static_cast<double>(engine.step_count()));
+    put_engine_state(a, engine);
     probes.save(a);
     if (bar) bar->save(a);
     if (tension) tension->save(a);
@@ -78,8 +69,7 @@ void MpmRunStage::run(StageContext& ctx) {
   std::int64_t first_step = 1;
   if (resuming) {
     const CheckpointArchive a = checkpoints.resume_archive();
-    const auto step = static_cast<std::int64_t>(a.scalar("engine/step"));
-    engine.restore_state({a.get("engine/points"), a.get("engine/rank_counts")}, step);
+    const std::int64_t step = take_engine_state(a, engine);
     probes.load(a);
     if (bar) bar->load(a);
     if (tension) tension->load(a);
@@ -97,15 +87,9 @@ void MpmRunStage::run(StageContext& ctx) {
     output.write(engine, n, t);
     if (bar) bar->after_step(engine, n, t);
     const bool stop = checkpoints.stop_agreed(n) && n < steps;
-    if (checkpointed && (stop || checkpoints.due(n, steps))) {
+    if (stop || checkpoints.due(n, steps)) {
       const std::string file = checkpoints.write(n, t, save);
       if (stop) throw StageFailure(StageCheckpoints::stopped_message(n, steps, file));
-    }
-    if (stop) {
-      throw StageFailure(fmt::format(
-          "stopped by a signal after step {} of {}; this stage writes no checkpoints, and a "
-          "resumed run starts it again",
-          n, steps));
     }
     ctx.progress(n, steps, t, "mpm");
   }

@@ -13,9 +13,11 @@ source "$(dirname "$0")/lib.sh"
 #  - on 1 rank instead of 2 (a copy of the killed run), to the rank tests'
 #    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh);
 # for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
-# crystal (shardlow_dpde) and a rigid flyer's impact; and mpm_run (the
+# crystal (shardlow_dpde), a rigid flyer's impact and the pull on the
+# DPD/MPM grid with its grips past a velocity ramp; and mpm_run (the
 # colliding disks, 1,000 steps on 1 rank, resumed also on 2: round-off
-# 1e-10 as mpm_ranks.sh) for an elastic material with DDMP gradients, J2
+# 1e-10 as mpm_ranks.sh; grid frames every 100 steps and their XDMF as
+# well) for an elastic material with DDMP gradients, J2
 # with plastic flow and an ideal gas; and an md_isotherm (256 atoms, 3
 # pressures on 2 ranks) killed while writing the checkpoint after its second
 # point, resumed from its first: every summary value and the isotherm table
@@ -55,6 +57,13 @@ stage["groups"] = [{"name": "near", "region": {"style": "block", "lo": [10, -1, 
 stage["motion"] = [{"group": "flyer", "kind": "rigid_body", "velocity": [5, 0, 0]}]
 stage["impact"] = {"near_slab": "near", "far_slab": "far", "axis": "x"}
 stage["probes"] = [{"name": "T", "kind": "temperature"}]
+# The pull on the DPD/MPM grid, its grips on a 2 ps ramp that has ended by
+# the checkpoint resumed from (the grid step holds their velocities).
+gridpull = copy.deepcopy(base)
+stage = gridpull["stages"][0]
+stage.update({"name": "gridpull", "grid": {"cell_size": 4.0}})
+for m in stage["motion"]:
+    m["ramp_time"] = 2
 # MPM: the colliding disks of mpm_disks_200.yaml for 1,000 steps, on one
 # rank (the resume on another goes to 2): elastic with DDMP gradients, J2
 # with plastic flow, ideal gas.
@@ -62,8 +71,7 @@ disks = yaml.safe_load(open(sys.argv[1].replace("checkpoint_dpd.yaml", "mpm_disk
 disks["launch"] = {"mpm": 1}
 disks["checkpoint"] = base["checkpoint"]
 stage = disks["stages"][0]
-stage.pop("grid_every")
-stage.update({"duration": 2.0, "particles_every": 50})
+stage.update({"duration": 2.0, "particles_every": 50, "grid_every": 100})
 mpm_cases = {}
 elastic = copy.deepcopy(disks)
 elastic["stages"][0].update({"gradient": "ddmp", "ddmp_blend": "face_vanishing"})
@@ -92,7 +100,7 @@ write("md_killed", md)
 plain = copy.deepcopy(pull)
 plain.pop("checkpoint")
 write("pull_plain", plain)
-for case, cfg in (("pull", pull), ("dpde", dpde), ("impact", impact)):
+for case, cfg in (("pull", pull), ("dpde", dpde), ("impact", impact), ("gridpull", gridpull)):
     write(f"{case}_whole", cfg)
     write(f"{case}_killed", cfg)
     write(f"{case}_one_rank", cfg)
@@ -152,6 +160,19 @@ if exact:
                 elif k not in timing and not np.array_equal(g[k][()], h[k][()]):
                     bad.append(f"results.h5 {path}/{k} differs")
         walk(fa[stage], fb[stage], stage)
+import os
+if os.path.exists(f"{a}/{stage}/grid.h5"):  # mpm_run's grid frames and their XDMF
+    with h5py.File(f"{a}/{stage}/grid.h5") as fa, h5py.File(f"{b}/{stage}/grid.h5") as fb:
+        if sorted(fa) != sorted(fb):
+            bad.append(f"grid frames {sorted(fb)}, the whole run's {sorted(fa)}")
+        print(f"  grid: {len(fa)} frames compared")
+        for g in fa:
+            for d in fa[g]:
+                x, y = fa[g][d][()], fb[g][d][()] if g in fb else None
+                if y is None or (exact and not np.array_equal(x, y)) or np.max(np.abs(x - y)) > max(xtol, vtol) * max(1.0, np.max(np.abs(x))):
+                    bad.append(f"grid {g}/{d} differs")
+    if open(f"{a}/{stage}/grid.xdmf").read() != open(f"{b}/{stage}/grid.xdmf").read():
+        bad.append("grid.xdmf differs")
 with h5py.File(f"{a}/{stage}/particles.h5md") as fa, h5py.File(f"{b}/{stage}/particles.h5md") as fb:
     steps_a, steps_b = fa["particles/all/position/step"][()], fb["particles/all/position/step"][()]
     if not np.array_equal(steps_a, steps_b):
@@ -174,7 +195,7 @@ sys.exit(1 if bad else 0)
 PYEOF
 }
 
-for spec in pull:pull dpde:dpde impact:impact; do
+for spec in pull:pull dpde:dpde impact:impact gridpull:gridpull; do
   case=${spec%%:*} stage=${spec##*:}
   echo "== $case"
   "$PBMS" run "${case}_whole.yaml" > "${case}_whole.out" 2>&1 || { cat "${case}_whole.out"; fail "$case: the whole run"; }
@@ -246,21 +267,9 @@ sys.exit(1 if bad else 0)
 PYEOF
 
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
-# The signal comes while the checkpoint after step 500 is held for 3 s, so
-# that it finds the stage running whatever the machine's speed.
-PBMS_TEST_CHECKPOINT_PAUSE="step_000000000500:3" "$PBMS" run pull_signalled.yaml > signalled.out 2>&1 &
-launcher=$!
 run="$PWD/runs/pull_signalled"
-for _ in $(seq 1 600); do
-  [ -f "$run/pull/checkpoints/step_000000000500.h5.partial" ] && break
-  kill -0 $launcher 2>/dev/null || { cat signalled.out; fail "the job ended before the signal"; }
-  sleep 0.1
-done
-t0=$(date +%s.%N)
-kill -TERM $launcher
-timeout 10 tail --pid=$launcher -f /dev/null || fail "the job did not end within 10 s of SIGTERM"
-echo "  ended $(printf '%.1f' "$(echo "$(date +%s.%N) - $t0" | bc)") s after SIGTERM"
-! wait $launcher || fail "the signalled job exited 0"
+stop_during_checkpoint pull_signalled.yaml "step_000000000500:3" \
+  "$run/pull/checkpoints/step_000000000500.h5.partial" signalled.out
 grep -q "checkpoint pull/checkpoints/step_000000000510.h5 holds the run; to go on from there: ./pbms run pull_signalled.yaml --resume" signalled.out ||
   { cat signalled.out; fail "the stopped job does not say how to go on"; }
 [ "$(yget "$run/manifest.yaml" status)" = stopped ] || fail "the manifest does not say stopped"

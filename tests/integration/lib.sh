@@ -53,3 +53,24 @@ job_process() {
   done
   echo "$found"
 }
+
+# SIGTERM to `./pbms run CONFIG` while it holds the checkpoint write PAUSE
+# (NAME:SECONDS, so that the signal finds the stage running whatever the
+# machine's speed) and FILE (that write's .partial) exists; the job must end
+# non-zero within 10 s. Its output goes to OUT:
+# stop_during_checkpoint CONFIG PAUSE FILE OUT
+stop_during_checkpoint() {
+  local config=$1 pause=$2 file=$3 out=$4 launcher t0
+  PBMS_TEST_CHECKPOINT_PAUSE="$pause" "$PBMS" run "$config" > "$out" 2>&1 &
+  launcher=$!
+  for _ in $(seq 1 600); do
+    [ -f "$file" ] && break
+    kill -0 $launcher 2>/dev/null || { cat "$out"; fail "the job ended before the signal"; }
+    sleep 0.1
+  done
+  t0=$(date +%s.%N)
+  kill -TERM $launcher
+  timeout 10 tail --pid=$launcher -f /dev/null || fail "the job did not end within 10 s of SIGTERM"
+  echo "  ended $(printf '%.1f' "$(echo "$(date +%s.%N) - $t0" | bc)") s after SIGTERM"
+  ! wait $launcher || fail "the signalled job exited 0"
+}

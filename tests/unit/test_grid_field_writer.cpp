@@ -227,6 +227,41 @@ TEST(GridFieldWriter, XdmfListsEveryFrameAndPointsAtExistingDatasets) {
   EXPECT_EQ(refs, 4);
 }
 
+// A run resumed from a checkpoint after step 10 of a file that already
+// holds step 20 ends with the same file contents and the same XDMF text as
+// a run never interrupted.
+TEST(GridFieldWriter, ReopenedAfterAStepDropsLaterFramesAndAppends) {
+  const ScratchDir scratch;
+  const auto& dir = scratch.path();
+  const auto grid = test_grid();
+  const auto box = grid.node_box();
+  const auto f = [&](int k) { return make_frame(box, k); };
+  {
+    GridFieldWriter w(MPI_COMM_SELF, (dir / "whole").string(), grid, box);
+    for (int k = 0; k < 4; ++k) w.write_frame(10 * k, 0.5 * k, fields_of(f(k)));
+  }
+  {
+    GridFieldWriter w(MPI_COMM_SELF, (dir / "resumed").string(), grid, box);
+    for (int k = 0; k < 3; ++k) w.write_frame(10 * k, 0.5 * k, fields_of(f(k)));
+  }
+  {
+    auto w = GridFieldWriter::reopen(MPI_COMM_SELF, (dir / "resumed").string(), grid, box, 10);
+    EXPECT_EQ(w->frames(), 2);
+    EXPECT_EQ(count_of(slurp(dir / "resumed.xdmf"), "<Grid Name=\"step_"), 2u);
+    for (int k = 2; k < 4; ++k) w->write_frame(10 * k, 0.5 * k, fields_of(f(100 + k)));
+  }
+  std::string expected = slurp(dir / "whole.xdmf");
+  expected = std::regex_replace(expected, std::regex("whole"), "resumed");
+  EXPECT_EQ(slurp(dir / "resumed.xdmf"), expected);
+  pbms::h5::Handle file(H5Fopen((dir / "resumed.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                        H5Fclose);
+  // Step 20 is the resumed run's, not the dropped one's.
+  EXPECT_EQ(read_dataset(file.id(), "step_20/mass").values[0], mass_at(0, 0, 0, 102));
+  EXPECT_EQ(read_dataset(file.id(), "step_10/velocity").values[1], velocity_at(0, 0, 0, 1, 1));
+  EXPECT_THROW((void)GridFieldWriter::reopen(MPI_COMM_SELF, (dir / "none").string(), grid, box, 10),
+               pbms::Error);
+}
+
 TEST(GridFieldWriter, RefusesBadBoxesAndFields) {
   const ScratchDir scratch;
   const auto& dir = scratch.path();

@@ -24,6 +24,11 @@ StageCheckpoints::StageCheckpoints(StageContext& ctx) : ctx_(ctx) {
   if (enabled()) window_.emplace();
 }
 
+void StageCheckpoints::run_as_part(std::string part, std::function<bool(bool)> any_part) {
+  part_ = std::move(part);
+  any_part_ = std::move(any_part);
+}
+
 std::string StageCheckpoints::write(std::int64_t step, double sim_time_ps,
                                     const std::function<CheckpointArchive()>& make) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -35,8 +40,9 @@ std::string StageCheckpoints::write(std::int64_t step, double sim_time_ps,
 
 void StageCheckpoints::report(StageResults& r) const {
   if (written_ == 0) return;
-  r.attributes["checkpoints_written"] = fmt::format("{}", written_);
-  r.attributes["checkpoint_seconds"] = fmt::format("{:.6g}", seconds_);
+  const std::string prefix = part_.empty() ? std::string() : part_ + "_";
+  r.attributes[prefix + "checkpoints_written"] = fmt::format("{}", written_);
+  r.attributes[prefix + "checkpoint_seconds"] = fmt::format("{:.6g}", seconds_);
 }
 
 bool StageCheckpoints::stop_agreed(std::int64_t step) {
@@ -48,15 +54,15 @@ bool StageCheckpoints::stop_now() {
   if (!enabled()) return false;
   int mine = stop_requested() ? 1 : 0, any = 0;
   mpi::check(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, ctx_.comm()), "MPI_Allreduce");
-  return any != 0;
+  return any_part_ ? any_part_(any != 0) : any != 0;
 }
 
 std::string StageCheckpoints::stopped_message(std::int64_t step, std::int64_t total,
                                               const std::string& file) {
   return fmt::format(
-      "stopped by a signal (SIGTERM or SIGUSR1: a wall-time limit?) after step {} of {}; the "
+      "{} (SIGTERM or SIGUSR1: a wall-time limit?) after step {} of {}; the "
       "checkpoint {} holds the run",
-      step, total, file);
+      kStoppedBySignal, step, total, file);
 }
 
 std::string StageCheckpoints::identity() const {
@@ -75,26 +81,30 @@ bool StageCheckpoints::due(std::int64_t step, std::int64_t total) {
   if (!plan.enabled() || step >= total) return false;
   if (plan.every_steps > 0 && step % plan.every_steps == 0) return true;
   if (!(plan.every_seconds > 0.0)) return false;
-  // Clocks differ between ranks: rank 0's decides for all.
+  // Clocks differ between ranks and programs: rank 0's decides for its
+  // program, and any program's for all.
   int yes = 0;
   if (ctx_.rank() == 0) {
     yes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >=
           plan.every_seconds;
   }
   mpi::check(MPI_Bcast(&yes, 1, MPI_INT, 0, ctx_.comm()), "MPI_Bcast");
-  return yes != 0;
+  return any_part_ ? any_part_(yes != 0) : yes != 0;
 }
 
 std::string StageCheckpoints::write(std::int64_t step, double sim_time_ps,
                                     const CheckpointArchive& archive) {
-  const std::string relative = fmt::format("{}/checkpoints/step_{:012d}.h5", ctx_.stage(), step);
+  const auto file = [&](const std::string& part) {
+    return fmt::format("{}/checkpoints/step_{:012d}{}.h5", ctx_.stage(), step,
+                       part.empty() ? std::string() : "." + part);
+  };
   if (ctx_.rank() == 0) {
-    archive.write(ctx_.run_dir() / relative, identity());
-    ctx_.checkpoint_written(step, sim_time_ps, relative);
+    archive.write(ctx_.run_dir() / file(part_), identity());
+    ctx_.checkpoint_written(step, sim_time_ps, file(part_));
   }
   mpi::check(MPI_Barrier(ctx_.comm()), "MPI_Barrier");
   last_ = std::chrono::steady_clock::now();
-  return relative;
+  return file("");
 }
 
 }  // namespace pbms

@@ -145,6 +145,18 @@ void write_attribute(hid_t obj, const std::string& name, const std::string& valu
   H5Awrite(attr.id(), type.id(), value.empty() ? "" : value.c_str());
 }
 
+std::string read_string_attribute(hid_t obj, const std::string& name) {
+  if (H5Aexists(obj, name.c_str()) <= 0) throw Error(fmt::format("no attribute '{}'", name));
+  Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
+  Handle type(H5Aget_type(attr.id()), H5Tclose);
+  if (H5Tget_class(type.id()) != H5T_STRING || H5Tis_variable_str(type.id()) > 0) {
+    throw Error(fmt::format("attribute '{}' is not a fixed-length string", name));
+  }
+  std::string value(H5Tget_size(type.id()), '\0');
+  H5Aread(attr.id(), type.id(), value.data());
+  return value.substr(0, value.find('\0'));
+}
+
 void write_vlen_attribute(hid_t obj, const std::string& name, const std::string& value) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose);

@@ -20,6 +20,14 @@ class StageCheckpoints {
  public:
   explicit StageCheckpoints(StageContext& ctx);
 
+  // A stage that several programs run together (a concurrent stage's
+  // parts) writes a file per program at steps all of them agree on.
+  // `part` names this program's file, <stage>/checkpoints/step_<N>.<part>.h5
+  // (empty: the main part's, step_<N>.h5); `any_part` is collective over
+  // every program's ranks and says whether any program passed true. The
+  // coupler records a checkpoint once every part has written its file.
+  void run_as_part(std::string part, std::function<bool(bool)> any_part);
+
   [[nodiscard]] bool enabled() const { return ctx_.checkpoint_plan().enabled(); }
   [[nodiscard]] bool resuming() const { return !ctx_.checkpoint_plan().resume_from.empty(); }
   // Collective: the checkpoint the coupler named, read on rank 0 and handed
@@ -31,13 +39,15 @@ class StageCheckpoints {
   // after the last step: the stage's results follow at once.
   [[nodiscard]] bool due(std::int64_t step, std::int64_t total);
   // Collective; rank 0 writes `archive` and tells the coupler. Returns the
-  // file, relative to the run directory.
+  // checkpoint's name as the coupler records it (the main part's file),
+  // relative to the run directory.
   std::string write(std::int64_t step, double sim_time_ps, const CheckpointArchive& archive);
   // write() of the archive `make` fills, timed (gather included).
   std::string write(std::int64_t step, double sim_time_ps,
                     const std::function<CheckpointArchive()>& make);
   // The attributes checkpoints_written and checkpoint_seconds (rank 0's
-  // wall time in making and writing them), when any was written.
+  // wall time in making and writing them), when any was written; a part
+  // other than the main one puts its name before them (mpm_checkpoint_seconds).
   void report(StageResults& r) const;
 
   // Collective: whether a rank has been asked to stop (stop_request.hpp),
@@ -59,6 +69,8 @@ class StageCheckpoints {
   StageContext& ctx_;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
   std::optional<StopWindow> window_;  // open while checkpoints are on
+  std::string part_;
+  std::function<bool(bool)> any_part_;  // null: one program runs the stage
   int written_ = 0;
   double seconds_ = 0.0;
 };

@@ -5,7 +5,13 @@
 // other time the process ends as it would without a handler.
 #pragma once
 
+#include <string_view>
+
 namespace pbms {
+
+// How the failure of a stage stopped on request begins: the coupler tells
+// it from a real failure by this.
+inline constexpr std::string_view kStoppedBySignal = "stopped by a signal";
 
 // Installs the handler for SIGTERM and SIGUSR1 (once per process).
 void install_stop_handlers();

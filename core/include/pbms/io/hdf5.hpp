@@ -64,6 +64,9 @@ void write_attribute(hid_t obj, const std::string& name, const std::string& valu
 // as `bytes`), which is what MDAnalysis' H5MD reader looks up units with.
 void write_vlen_attribute(hid_t obj, const std::string& name, const std::string& value);
 void write_attribute(hid_t obj, const std::string& name, double value);
+// A fixed-length string attribute, as write_attribute writes it; throws
+// pbms::Error when `obj` has no string attribute `name`.
+std::string read_string_attribute(hid_t obj, const std::string& name);
 void write_attribute(hid_t obj, const std::string& name, const std::vector<int>& value);
 // 1-D double dataset with a "unit" attribute.
 void write_vector(hid_t parent, const std::string& name, const std::vector<double>& data,

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pbms/coupling/concurrent_params.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::coupling {
@@ -65,6 +66,12 @@ class ConcurrentProbes {
 
   // Adds `<prefix>_` scalars and tables.
   void report(StageResults& r, const std::string& prefix) const;
+
+  // Everything a resumed stage needs to go on measuring as if never
+  // stopped: the starts (every rank holds them all) and the series so far,
+  // under `probes/`.
+  void save(CheckpointArchive& a) const;
+  void load(const CheckpointArchive& a);
 
  private:
   struct Moments {

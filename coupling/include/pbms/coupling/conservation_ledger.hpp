@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pbms/coupling/concurrent_probes.hpp"
+#include "pbms/io/checkpoint_archive.hpp"
 #include "pbms/results.hpp"
 
 namespace pbms::coupling {
@@ -43,6 +44,12 @@ class ConservationLedger {
   [[nodiscard]] double momentum_drift(MPI_Comm inter) const;
 
   [[nodiscard]] std::size_t rows() const { return time_.size(); }
+  // The rows so far (already summed over the ranks), under `ledger/`, and
+  // this rank's `pending` row not yet added, summed over the ranks.
+  // Collective when `pending` is given (on every rank).
+  void save(CheckpointArchive& a, const Row* pending = nullptr) const;
+  // The rows save() wrote; returns the pending row (time NaN when none).
+  Row load(const CheckpointArchive& a);
   // Adds the table `<prefix>_ledger`.
   void report(StageResults& r, const std::string& prefix) const;
 

@@ -28,4 +28,8 @@ template <std::size_t N>
 // (rank 0's is sent) and gets the other program's.
 [[nodiscard]] double swap_scalar(MPI_Comm inter, MPI_Comm local, double mine);
 
+// Collective over both programs: whether either program's rank 0 passed
+// true (a decision both must take at the same step).
+[[nodiscard]] bool either_program(MPI_Comm inter, MPI_Comm local, bool mine);
+
 }  // namespace pbms::coupling

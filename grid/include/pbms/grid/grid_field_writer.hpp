@@ -14,6 +14,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -40,6 +41,15 @@ class GridFieldWriter {
   // outlive the writer.
   GridFieldWriter(MPI_Comm comm, const std::string& base, const grid::RegularGrid& grid,
                   const grid::NodeBox& owned);
+  // A run resumed after `last_step` (a checkpoint's) goes on with the file
+  // it wrote: the frames after last_step are unlinked, the XDMF file lists
+  // the kept ones again, and the next write_frame appends. The ranks and
+  // their boxes may differ from the earlier run's. Collective; throws
+  // pbms::Error on every rank when the file cannot be read.
+  static std::unique_ptr<GridFieldWriter> reopen(MPI_Comm comm, const std::string& base,
+                                                 const grid::RegularGrid& grid,
+                                                 const grid::NodeBox& owned,
+                                                 std::int64_t last_step);
 
   // Writes /step_<step>/<name> for each field, of global shape (nz, ny, nx)
   // or (nz, ny, nx, 3): z slowest, as XDMF wants. Steps must be unique;
@@ -51,6 +61,18 @@ class GridFieldWriter {
   [[nodiscard]] const std::string& xdmf_path() const { return xdmf_path_; }
 
  private:
+  struct NoFileYet {};
+  GridFieldWriter(MPI_Comm comm, const std::string& base, const grid::RegularGrid& grid,
+                  const grid::NodeBox& owned, NoFileYet);
+  // The checks every constructor makes of its arguments (collective).
+  void check_arguments(const std::string& base) const;
+  void make_transfer_list();
+  // Rank 0: the kept frames' XML and steps, and the later ones' groups.
+  struct FramesOnFile {
+    std::vector<std::int64_t> kept, dropped;
+    std::vector<std::string> xml;
+  };
+  [[nodiscard]] FramesOnFile frames_on_file(std::int64_t last_step) const;
   // Throws on every rank if any rank's arguments are bad or differ from
   // another rank's.
   void check_frame(std::int64_t step, double time, const std::vector<Field>& fields) const;
