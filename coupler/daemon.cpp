@@ -402,8 +402,26 @@ class Daemon {
     protocol::RunStage keyed = rs;
     keyed.materials_yaml = yaml_text(own);
     const auto& link = scheduler_.link(stage.program);
-    return cache_identity(keyed, link.hello.software,
-                          file_digest(opt_.drivers_dir / stage.program));
+    return cache_identity(keyed, link.hello.software, file_digest(opt_.drivers_dir / stage.program),
+                          material_files(own));
+  }
+
+  // "path: digest" of every file the materials read (their kind's file
+  // fields), so that a cache entry follows the contents, not the name.
+  [[nodiscard]] std::vector<std::string> material_files(const YAML::Node& materials) const {
+    std::vector<std::string> out;
+    for (const auto& m : materials) {
+      const YAML::Node kind = m.second["kind"];
+      const config::MaterialKindSpec* spec =
+          kind && kind.IsScalar() ? config::find_material_kind(drivers_, kind.Scalar()) : nullptr;
+      if (!spec) continue;
+      for (const auto& p : spec->params) {
+        const YAML::Node path = m.second[p.name];
+        if (p.kind != config::ParamKind::kFile || !path || !path.IsScalar()) continue;
+        out.push_back(fmt::format("{}: {}", path.Scalar(), file_digest(path.Scalar())));
+      }
+    }
+    return out;
   }
 
   [[noreturn]] void fail(const std::string& program, int rank, const std::string& stage,

@@ -62,13 +62,15 @@ std::string file_digest(const fs::path& file) {
 
 std::string cache_identity(const protocol::RunStage& request,
                            const std::vector<std::string>& software,
-                           const std::string& driver_digest) {
+                           const std::string& driver_digest,
+                           const std::vector<std::string>& input_files) {
   std::ostringstream s;
   s << "stage: " << request.name << "\nkind: " << request.kind << "\nseed: " << request.seed
     << "\ndriver: " << driver_digest << "\nsoftware: ["
     << fmt::format("{}", fmt::join(software, ", ")) << "]\nparams:\n"
     << request.params_yaml << "\nmaterials:\n"
-    << request.materials_yaml << "\n";
+    << request.materials_yaml << "\nfiles:\n";
+  for (const auto& f : input_files) s << "  " << f << "\n";
   return s.str();
 }
 

@@ -40,9 +40,11 @@ class ResultCache {
 std::string file_digest(const std::filesystem::path& file);
 
 // The identity text of a request whose materials block holds only the
-// materials it names.
+// materials it names; `input_files` are "path: digest" lines of the files
+// those materials read (a potential edited in place is another material).
 std::string cache_identity(const protocol::RunStage& request,
                            const std::vector<std::string>& software,
-                           const std::string& driver_digest);
+                           const std::string& driver_digest,
+                           const std::vector<std::string>& input_files);
 
 }  // namespace pbms::coupler

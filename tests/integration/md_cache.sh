@@ -2,15 +2,16 @@ source "$(dirname "$0")/lib.sh"
 # MD results are kept in <output>/.cache/ and reused: a second run under a new
 # name whose MD stage is unchanged, but whose later stage is, runs no LAMMPS
 # and gets the same numbers and files; a changed MD parameter misses the
-# cache and runs MD again.
-write() {  # write NAME STRAIN CELLS
+# cache and runs MD again, and so does a potential file edited in place
+# (the cache holds its contents' digest, not its name).
+write() {  # write NAME STRAIN CELLS [POTENTIAL]
   cat > "$1.yaml" <<YAML
 run: {name: $1, seed: 5}
 launch: {md: 1, dpd: 1}
 materials:
   cu:
     kind: eam_alloy
-    potential: /usr/share/lammps/potentials/Cu_mishin1.eam.alloy
+    potential: ${4:-/usr/share/lammps/potentials/Cu_mishin1.eam.alloy}
     mass: 63.546
     lattice_constant: 3.615
   cu_cg:
@@ -54,4 +55,17 @@ print(f"{'ok  ' if differs else 'FAIL'} strain 2e-3 computed anew: c11 {c['c11']
 bad += not differs
 sys.exit(1 if bad else 0)
 PYEOF
+
+# The same potential file, edited in place between two runs. Only its first
+# comment line changes (LAMMPS skips it, so MD would give the same numbers):
+# the smallest change of contents must still miss the cache.
+cp /usr/share/lammps/potentials/Cu_mishin1.eam.alloy mine.eam.alloy
+write own_a 1.0e-3 3 "$PWD/mine.eam.alloy"
+write own_b 1.0e-3 4 "$PWD/mine.eam.alloy"
+"$PBMS" run own_a.yaml > out_own_a.txt 2>&1 || { cat out_own_a.txt; fail "run own_a"; }
+sed -i '1s/.*/edited by the test/' mine.eam.alloy
+"$PBMS" run own_b.yaml > out_own_b.txt 2>&1 || { cat out_own_b.txt; fail "run own_b"; }
+grep -q "reused from the cache" runs/own_b/log.txt &&
+  fail "a potential file edited in place reused the cache entry of its old contents"
+echo "ok   a potential file edited in place (same path) misses the cache"
 echo "1 passed, 0 failed"

@@ -116,7 +116,9 @@ TEST(DpdGridStep, AFreeRigidBodyKeepsTheTotalMomentum) {
 
 // As the cell edge shrinks the grid model tends to DPD-only (seed §5.2):
 // from the same start and the same pair noise, the positions after 50
-// steps come closer to velocity Verlet's with h = a/4 than with h = a/2.
+// steps come closer to velocity Verlet's with h = a/4 than with h = a/2,
+// at least as fast as the linear shape functions' O(h^2) transfer error
+// (a factor 4 for half the edge; measured 0.0058 and 0.0001 Å, 58 times).
 TEST(DpdGridStep, ApproachesDpdOnlyAsTheCellsShrink) {
   const double cutoff = cu_cg_morse_parameters().cutoff;
   auto reference = crystal(4, cutoff);
@@ -139,7 +141,7 @@ TEST(DpdGridStep, ApproachesDpdOnlyAsTheCellsShrink) {
   }
   std::printf("rms deviation from DPD-only after 50 steps: h = a/2: %.4f Å, h = a/4: %.4f Å\n",
               deviation[0], deviation[1]);
-  EXPECT_LT(deviation[1], deviation[0]);
+  EXPECT_LT(deviation[1], deviation[0] / 4.0);
 }
 
 // On several ranks the grid step rebuilds (wrap, migration, ghosts, list)

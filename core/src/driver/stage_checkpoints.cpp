@@ -5,6 +5,13 @@
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/comm.hpp"
 
+#ifndef PBMS_GIT_HASH
+#define PBMS_GIT_HASH "unknown"
+#endif
+#ifndef PBMS_VERSION
+#define PBMS_VERSION "0"
+#endif
+
 namespace pbms {
 namespace {
 
@@ -68,8 +75,8 @@ std::string StageCheckpoints::stopped_message(std::int64_t step, std::int64_t to
 std::string StageCheckpoints::identity() const {
   std::string text = yaml_text(ctx_.params());
   if (ctx_.params()["material"]) text += yaml_text(ctx_.material());
-  return fmt::format("stage '{}' ({}), parameters {:016x}", ctx_.stage(), ctx_.kind(),
-                     digest(text));
+  return fmt::format("stage '{}' ({}), parameters {:016x}; PBMS {} ({})", ctx_.stage(), ctx_.kind(),
+                     digest(text), PBMS_VERSION, PBMS_GIT_HASH);
 }
 
 CheckpointArchive StageCheckpoints::resume_archive() const {

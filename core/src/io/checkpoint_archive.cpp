@@ -1,8 +1,11 @@
 #include "pbms/io/checkpoint_archive.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -42,6 +45,28 @@ void pause_for_tests(const std::filesystem::path& file) {
   if (colon == std::string::npos) return;
   if (file.filename().string().find(spec.substr(0, colon)) == std::string::npos) return;
   std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(spec.c_str() + colon + 1)));
+}
+
+std::vector<std::string> identity_parts(const std::string& identity) {
+  std::vector<std::string> parts;
+  std::size_t from = 0;
+  for (std::size_t at = identity.find("; "); at != std::string::npos;
+       at = identity.find("; ", from)) {
+    parts.push_back(identity.substr(from, at - from));
+    from = at + 2;
+  }
+  parts.push_back(identity.substr(from));
+  return parts;
+}
+
+// Names the first part of the two identities that differs (the stage and
+// its parameters, then the program's version).
+std::string identity_mismatch(const std::string& theirs, const std::string& mine) {
+  const auto a = identity_parts(theirs), b = identity_parts(mine);
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    if (a[k] != b[k]) return fmt::format("it holds the state of {}; this run is {}", a[k], b[k]);
+  }
+  return fmt::format("it holds the state of {}; this run is {}", theirs, mine);
 }
 
 void broadcast_string(std::string& s, MPI_Comm comm) {
@@ -96,9 +121,7 @@ CheckpointArchive CheckpointArchive::read(const std::filesystem::path& file,
       if (!std::filesystem::exists(file)) throw Error("it does not exist");
       h5::Handle f(H5Fopen(file.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
       const std::string theirs = read_identity(f.id());
-      if (theirs != identity) {
-        throw Error(fmt::format("it holds the state of {}, and this is {}", theirs, identity));
-      }
+      if (theirs != identity) throw Error(identity_mismatch(theirs, identity));
       H5G_info_t info{};
       H5Gget_info(f.id(), &info);
       for (hsize_t k = 0; k < info.nlinks; ++k) {

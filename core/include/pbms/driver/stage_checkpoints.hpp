@@ -62,7 +62,8 @@ class StageCheckpoints {
                                                    const std::string& file);
 
   // Whose state a checkpoint holds: the stage, its kind and a digest of its
-  // parameters and materials.
+  // parameters and materials; and the PBMS version and commit that wrote it
+  // (a build of another commit may hold its state otherwise).
   [[nodiscard]] std::string identity() const;
 
  private:

@@ -28,7 +28,8 @@ class CheckpointArchive {
   // kill leaves either the whole file or none. PBMS_TEST_CHECKPOINT_PAUSE
   // ("NAME:SECONDS") holds the writer of a file whose name holds NAME that
   // long between the two: the tests' window for a kill mid-write.
-  // `identity` says whose state it is.
+  // `identity` says whose state it is: parts separated by "; ", such as the
+  // stage and its parameters, then the version that wrote it.
   void write(const std::filesystem::path& file, const std::string& identity) const;
   // Reads `file` on rank 0 and hands it to every rank of `comm`. Throws
   // pbms::Error when the file cannot be read or its identity is not
