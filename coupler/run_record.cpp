@@ -15,13 +15,7 @@
 #include "pbms/io/hdf5.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/protocol/messages.hpp"
-
-#ifndef PBMS_GIT_HASH
-#define PBMS_GIT_HASH "unknown"
-#endif
-#ifndef PBMS_VERSION
-#define PBMS_VERSION "0"
-#endif
+#include "pbms/version.hpp"
 
 namespace pbms::coupler {
 namespace {
@@ -145,8 +139,8 @@ RunRecord::RunRecord(const config::Workflow& wf, const std::vector<ProgramLayout
   std::string mpi(mpi_version, static_cast<size_t>(len));
   if (auto nl = mpi.find_first_of(",\n"); nl != std::string::npos) mpi.resize(nl);
 
-  manifest_["pbms_version"] = PBMS_VERSION;
-  manifest_["git_hash"] = PBMS_GIT_HASH;
+  manifest_["pbms_version"] = version();
+  manifest_["git_hash"] = git_hash();
   manifest_["protocol_version"] = static_cast<int>(protocol::kProtocolVersion);
   manifest_["config"] = std::filesystem::absolute(wf.source_file).string();
   manifest_["command"] = command_line;

@@ -4,13 +4,7 @@
 
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/mpi/comm.hpp"
-
-#ifndef PBMS_GIT_HASH
-#define PBMS_GIT_HASH "unknown"
-#endif
-#ifndef PBMS_VERSION
-#define PBMS_VERSION "0"
-#endif
+#include "pbms/version.hpp"
 
 namespace pbms {
 namespace {
@@ -76,7 +70,7 @@ std::string StageCheckpoints::identity() const {
   std::string text = yaml_text(ctx_.params());
   if (ctx_.params()["material"]) text += yaml_text(ctx_.material());
   return fmt::format("stage '{}' ({}), parameters {:016x}; PBMS {} ({})", ctx_.stage(), ctx_.kind(),
-                     digest(text), PBMS_VERSION, PBMS_GIT_HASH);
+                     digest(text), version(), git_hash());
 }
 
 CheckpointArchive StageCheckpoints::resume_archive() const {
