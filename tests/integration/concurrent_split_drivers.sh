@@ -57,21 +57,26 @@ PYEOF
 }
 
 # The grips moved as their ramps say over the 2 ps: v (t - T/2), the
-# MPM one 1 x (2 - 0.5) Å along x, the DPD one 0.5 x (2 - 0.25) Å along y.
+# MPM one 1 x (2 - 0.5) Å along x, the DPD one 0.5 x (2 - 0.25) Å along y;
+# every member of each grip (the sites that start in its slab of
+# concurrent_small.yaml: mpm_far 98-104 Å, dpd_near 10-16 Å along x) and no
+# other particle.
 grips_ramped() {  # RUN_DIR
   "$PY" - "$1" <<'PYEOF'
 import sys
 import h5py
 import numpy as np
 run = sys.argv[1]
-def moved(name, axis, expect):
+def moved(name, axis, expect, slab):
     with h5py.File(f"{run}/impact/{name}.h5md", "r") as f:
         x = f["particles/all/position/value"]
-        d = x[-1] - x[0]
+        x0, d = x[0], x[-1] - x[0]
+    member = (x0[:, 0] > slab[0]) & (x0[:, 0] < slab[1])
     on = np.abs(d[:, axis] - expect) < 1e-9
-    print(f"{name}: {on.sum()} particles moved {expect} Å along {'xyz'[axis]} (the ramped grip)")
-    return on.sum() >= 16
-ok = moved("mpm_particles", 0, 1.5) and moved("dpd_particles", 1, 0.875)
+    print(f"{name}: {on.sum()} particles moved {expect} Å along {'xyz'[axis]}; the grip's slab "
+          f"holds {member.sum()}")
+    return member.sum() > 0 and np.array_equal(on, member)
+ok = moved("mpm_particles", 0, 1.5, (98, 104)) and moved("dpd_particles", 1, 0.875, (10, 16))
 sys.exit(0 if ok else 1)
 PYEOF
 }

@@ -1,6 +1,11 @@
 source "$(dirname "$0")/lib.sh"
 # fit_dpd_potential recovers potentials from targets the DPD engine computed
-# with them (static crystal, so no sampling noise: the tolerance is 1 %):
+# with them (static crystal, so no sampling noise). The tolerance is 1e-4
+# relative: the optimisers stop at x_tolerance 1e-8 and the recoveries reach
+# 1e-8 to 5e-7 (2-core AMD EPYC, 2026-12-05), so 1e-4 leaves room for
+# another instruction set's last bits and still fails a fit stopped early by
+# its budget or weighting the targets wrongly, which 1 % (the tolerance
+# until 2026-12-05) let pass:
 #  - Morse, d0, alpha and r0 free, started 10-20 % away; its r0 bounds let
 #    candidates fall apart, and those are recorded as failed with a reason;
 #  - Sutton-Chen, epsilon, c and n free, from isotherm and elastic constants;
@@ -46,7 +51,7 @@ for run, config, free in (("fit_recovery_morse", "fit_recovery_morse.yaml", ("d0
         away = abs(start[k] - t[k]) / t[k]
         check(0.1 <= away <= 0.2, f"{run}: {k} starts {away:.0%} away from the truth")
         err = abs(fit[k]["value"] - t[k]) / t[k]
-        check(err < 0.01, f"{run}: {k} = {fit[k]['value']:.6g} against {t[k]} (relative error {err:.1e}, tolerance 1 %)")
+        check(err < 1e-4, f"{run}: {k} = {fit[k]['value']:.9g} against {t[k]} (relative error {err:.1e}, tolerance 1e-4)")
     written = yaml.safe_load(open(f"runs/{run}/fit/potential.yaml"))
     check(all(written[k] == fit[k]["value"] for k in free) and written["style"] == t["style"],
           f"{run}: fit/potential.yaml holds the fitted parameters")
