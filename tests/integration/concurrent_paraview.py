@@ -9,9 +9,11 @@ files by the run's plot step, scripts/concurrent_xdmf.py) is opened by
 pvpython with ParaView's XDMF Reader, by its absolute path from another
 working directory. At every time it lists, the DPD particles' and the MPM
 points' positions must equal the frame h5py reads from the two H5MD files,
-and the grid must be there, with its node count, at every time the grid
-file has a frame. (ParaView's Xdmf3 readers take the grid but not the
-particles' hyperslabs; the XDMF Reader takes all three.)
+and the grid must be there at every time the grid file has a frame, with
+its node count and, node by node, the mass and velocity that frame holds
+(so a reader stuck on one frame, or axes taken in the wrong order, fails).
+(ParaView's Xdmf3 readers take the grid but not the particles' hyperslabs;
+the XDMF Reader takes all three.)
 """
 
 import json
@@ -65,9 +67,17 @@ def in_pvpython(xdmf):
             if step in grid_steps:
                 report["grid_frames"] += 1
                 block = seen.get("grid")
-                nodes = int(np.prod(g[f"step_{step}/mass"].shape))
+                frame = g[f"step_{step}"]
+                nodes = int(np.prod(frame["mass"].shape))
                 if block is None or block.GetNumberOfPoints() != nodes:
                     report["bad"].append(f"t = {t}: grid missing or not {nodes} nodes")
+                    continue
+                # VTK numbers the nodes x fastest, as the file's (z, y, x) order flattened.
+                for field, width in (("mass", 1), ("velocity", 3)):
+                    array = block.GetPointData().GetArray(field)
+                    got = None if array is None else vtk_to_numpy(array).reshape(nodes, width)
+                    if got is None or not np.array_equal(got, frame[field][()].reshape(nodes, width)):
+                        report["bad"].append(f"t = {t}: grid {field} differs from step {step} of the file")
     print("REPORT " + json.dumps(report))
 
 
@@ -87,8 +97,8 @@ def main():
             continue
         r = json.loads(lines[-1][7:])
         check(not r["bad"] and r["times"] > 1 and r["grid_frames"] > 0,
-              f"{stage}: ParaView read both parts at {r['times']} times and the grid at "
-              f"{r['grid_frames']}, equal to the files" + ("; " + "; ".join(r["bad"][:5]) if r["bad"] else ""))
+              f"{stage}: ParaView read both parts at {r['times']} times and the grid (mass and "
+              f"velocity node by node) at {r['grid_frames']}, equal to the files" + ("; " + "; ".join(r["bad"][:5]) if r["bad"] else ""))
     return check.finish()
 
 
