@@ -10,6 +10,8 @@
 #include "md_setup.hpp"
 #include "pbms/analysis/cubic_moduli.hpp"
 #include "pbms/analysis/statistics.hpp"
+#include "pbms/driver/stage_checkpoints.hpp"
+#include "pbms/error.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::md {
@@ -27,6 +29,7 @@ config::StageKindSpec ElasticStage::spec() {
       "averaged by NVT MD at a temperature";
   s.material_kinds = {"eam_alloy", "eam_fs"};
   s.cacheable = true;
+  s.checkpoints = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
       Param::int_list("cells", "Unit cells along x, y, z")
@@ -183,6 +186,31 @@ struct StrainTable {
     xy.push_back(s.xy);
   }
   [[nodiscard]] int64_t rows() const { return static_cast<int64_t>(t.size()); }
+  [[nodiscard]] Stress stress(std::size_t row) const {
+    return {xx.at(row), yy.at(row), zz.at(row), xy.at(row)};
+  }
+
+  // The rows as a checkpoint holds them, and back.
+  [[nodiscard]] CheckpointArchive archive() const {
+    CheckpointArchive a;
+    a.put("strains/temperature", t);
+    a.put("strains/mode", mode);
+    a.put("strains/strain", e);
+    a.put("strains/stress_xx", xx);
+    a.put("strains/stress_yy", yy);
+    a.put("strains/stress_zz", zz);
+    a.put("strains/stress_xy", xy);
+    return a;
+  }
+  void load(const CheckpointArchive& a) {
+    t = a.get("strains/temperature");
+    mode = a.get("strains/mode");
+    e = a.get("strains/strain");
+    xx = a.get("strains/stress_xx");
+    yy = a.get("strains/stress_yy");
+    zz = a.get("strains/stress_zz");
+    xy = a.get("strains/stress_xy");
+  }
 
   void write(StageResults& r) const {
     r.add_column("strains", "temperature", "K", t);
@@ -195,16 +223,53 @@ struct StrainTable {
   }
 };
 
+// A checkpoint after each strained state but the last: each state is its
+// own LAMMPS run from its own seed, so a resumed stage runs the others
+// exactly as they would have run. A checkpoint's step counts the finished
+// states; a stop request waits for the running one.
+class FinishedStates {
+ public:
+  FinishedStates(StageContext& ctx, int total) : checkpoints_(ctx), total_(total) {}
+
+  // The states the checkpoint a resumed run goes on from holds.
+  void resume(StrainTable& table) {
+    if (checkpoints_.enabled() && checkpoints_.resuming()) {
+      table.load(checkpoints_.resume_archive());
+    }
+  }
+  // After each finished state. Collective.
+  void finished(const StrainTable& table) {
+    const std::int64_t step = table.rows();
+    if (!checkpoints_.enabled() || step == total_) return;
+    const std::string file = checkpoints_.write(step, 0.0, [&] { return table.archive(); });
+    if (checkpoints_.stop_now()) {
+      throw StageFailure(StageCheckpoints::stopped_message(step, total_, file));
+    }
+  }
+  void report(StageResults& r) const { checkpoints_.report(r); }
+
+ private:
+  StageCheckpoints checkpoints_;
+  std::int64_t total_;
+};
+
 // The four strains (xx and xy, each + and -) at temperature t on a crystal
 // of lattice constant a, and the moduli from their central differences.
+// States the table already holds (a resumed stage's) are not run again.
 analysis::CubicModuli measure(StageContext& ctx, const MdMaterial& mat, const ElasticParams& prm,
-                              double t, double a, StrainTable& table) {
+                              double t, double a, StrainTable& table, FinishedStates& finished) {
   const double e = t > 0 ? prm.strain_at_temperature : prm.strain;
   // Progress counts the strains of the whole stage, hot ones included.
   const int total = prm.temperature > 0 ? 8 : 4;
-  Stress s[2][2];  // [mode][sign]
+  const int first = t > 0 ? 4 : 0;  // the table's row of this temperature's first state
+  Stress s[2][2];                   // [mode][sign]
   for (int m = 0; m < 2; ++m) {
     for (int sign = 0; sign < 2; ++sign) {
+      const int row = first + m * 2 + sign;
+      if (row < table.rows()) {
+        s[m][sign] = table.stress(static_cast<std::size_t>(row));
+        continue;
+      }
       const double strain = sign == 0 ? e : -e;
       const std::string tag = fmt::format("{}_{}_{}", t > 0 ? "hot" : "cold", m == 0 ? "xx" : "xy",
                                           sign == 0 ? "plus" : "minus");
@@ -212,6 +277,7 @@ analysis::CubicModuli measure(StageContext& ctx, const MdMaterial& mat, const El
                                    t, tag, m * 2 + sign);
       table.add(t, m, strain, s[m][sign]);
       ctx.progress(table.rows(), total, 0.0, tag);
+      finished.finished(table);
     }
   }
   return analysis::CubicModuli{(s[0][0].xx - s[0][1].xx) / (2 * e),
@@ -239,20 +305,24 @@ void ElasticStage::run(StageContext& ctx) {
   const double a_t = prm.lattice_constant.value_or(mat.lattice_constant);
   auto& r = ctx.results();
   StrainTable table;
+  FinishedStates finished(ctx, temperature > 0 ? 8 : 4);
+  finished.resume(table);
   r.add_scalar("lattice_parameter", relaxed_lattice_parameter(ctx, mat, prm.cells), "Å");
-  const analysis::CubicModuli cold = measure(ctx, mat, prm, 0.0, mat.lattice_constant, table);
+  const analysis::CubicModuli cold =
+      measure(ctx, mat, prm, 0.0, mat.lattice_constant, table, finished);
   r.add_scalar("c11", cold.c11, "GPa");
   r.add_scalar("c12", cold.c12, "GPa");
   r.add_scalar("c44", cold.c44, "GPa");
   r.add_scalar("bulk_modulus", cold.bulk_modulus(), "GPa");
   r.add_scalar("youngs_modulus_100", cold.youngs_modulus_100(), "GPa");
   if (temperature > 0) {
-    const analysis::CubicModuli hot = measure(ctx, mat, prm, temperature, a_t, table);
+    const analysis::CubicModuli hot = measure(ctx, mat, prm, temperature, a_t, table, finished);
     r.add_scalar("c11_at_t", hot.c11, "GPa");
     r.add_scalar("c12_at_t", hot.c12, "GPa");
     r.add_scalar("c44_at_t", hot.c44, "GPa");
   }
   table.write(r);
+  finished.report(r);
 }
 
 }  // namespace pbms::md

@@ -21,7 +21,8 @@ source "$(dirname "$0")/lib.sh"
 # with plastic flow and an ideal gas; and an md_isotherm (256 atoms, 3
 # pressures on 2 ranks) killed while writing the checkpoint after its second
 # point, resumed from its first: every summary value and the isotherm table
-# bitwise. The pull without a
+# bitwise; and an md_elastic at 0 K (four strained states) the same way,
+# every summary value and the strains table bitwise. The pull without a
 # checkpoint: block ends bitwise as the whole run that wrote them: writing
 # one disturbs nothing. SIGTERM to `./pbms run` during the pull: the job
 # writes a checkpoint at the next step boundary and ends non-zero within
@@ -97,6 +98,14 @@ md["stages"][0].update({"pressures": ["0 GPa", "2 GPa", "5 GPa"], "cells": [4, 4
 write("md_whole", md)
 md["run"]["output"] = "runs_md"  # its own result cache: the whole run's would answer it
 write("md_killed", md)
+# MD elastic constants at 0 K: four strained states, a checkpoint after each.
+elastic = copy.deepcopy(md)
+elastic["stages"] = [{"name": "elastic", "kind": "md_elastic", "material": md["stages"][0]["material"],
+                      "cells": [3, 3, 3]}]
+elastic["run"]["output"] = "runs"
+write("elastic_whole", elastic)
+elastic["run"]["output"] = "runs_elastic"
+write("elastic_killed", elastic)
 plain = copy.deepcopy(pull)
 plain.pop("checkpoint")
 write("pull_plain", plain)
@@ -236,35 +245,51 @@ PYEOF
     fail "$case: resumed on 2 ranks, beyond round-off"
 done
 
+# An MD stage with a checkpoint after each finished point: killed while the
+# second is written, resumed from the first, and compared with the whole
+# run: every summary value and the stage's TABLE bitwise.
+# md_killed_resumed CASE STAGE TABLE OUTPUT SECOND FIRST
+md_killed_resumed() {
+  local case=$1 stage=$2 table=$3 output=$4 second=$5 first=$6 pid
+  PBMS_TEST_CHECKPOINT_PAUSE="$second:120" "$PBMS" run "${case}_killed.yaml" > "${case}_killed.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 1 1200); do
+    [ -f "$output/${case}_killed/$stage/checkpoints/$second.h5.partial" ] && break
+    kill -0 $pid 2>/dev/null || { cat "${case}_killed.out"; fail "$case: ended before the kill"; }
+    sleep 0.1
+  done
+  kill -9 "$(job_process md_driver)"
+  timeout 60 tail --pid=$pid -f /dev/null || fail "$case: the job did not end after the kill"
+  "$PBMS" run "${case}_killed.yaml" --resume > "${case}_resumed.out" 2>&1 ||
+    { cat "${case}_resumed.out"; fail "$case: the resume"; }
+  grep -q "goes on from its checkpoint .*$first.h5" "${case}_resumed.out" ||
+    { cat "${case}_resumed.out"; fail "$case: not from the first point"; }
+  "$PY" - "$PWD/runs/${case}_whole" "$PWD/$output/${case}_killed" "$stage" "$table" <<'PYEOF' ||
+import sys, yaml, h5py, numpy as np
+a, b, stage, table = sys.argv[1:]
+sa = yaml.safe_load(open(f"{a}/summary.yaml"))["stages"][stage]["results"]
+sb = yaml.safe_load(open(f"{b}/summary.yaml"))["stages"][stage]["results"]
+bad = [k for k in sa if sa[k]["value"] != sb[k]["value"]]
+with h5py.File(f"{a}/results.h5") as fa, h5py.File(f"{b}/results.h5") as fb:
+    t = f"{stage}/{table}"
+    bad += [c for c in fa[t] if not np.array_equal(fa[t][c][()], fb[t][c][()])]
+print(f"  resumed from the first point: {len(sa)} summary values and the {table} table "
+      + ("bitwise as the whole run" if not bad else f"differ: {bad}"))
+sys.exit(1 if bad else 0)
+PYEOF
+    fail "$case: the resumed stage differs"
+}
+
 echo "== md_isotherm: killed while the checkpoint after its second point is written"
 "$PBMS" run md_whole.yaml > md_whole.out 2>&1 || { cat md_whole.out; fail "md: the whole run"; }
 mapfile -t md_steps < <(grep -o "checkpoint after step [0-9]*" runs/md_whole/log.txt | awk '{print $4}')
 [ "${#md_steps[@]}" -eq 2 ] || fail "md: the whole isotherm wrote ${#md_steps[@]} checkpoints, not 2"
-second=$(printf 'step_%012d' "${md_steps[1]}")
-first=$(printf 'step_%012d' "${md_steps[0]}")
-PBMS_TEST_CHECKPOINT_PAUSE="$second:120" "$PBMS" run md_killed.yaml > md_killed.out 2>&1 &
-pid=$!
-for _ in $(seq 1 1200); do
-  [ -f "runs_md/md_killed/isotherm/checkpoints/$second.h5.partial" ] && break
-  kill -0 $pid 2>/dev/null || { cat md_killed.out; fail "md: ended before the kill"; }
-  sleep 0.1
-done
-kill -9 "$(job_process md_driver)"
-timeout 60 tail --pid=$pid -f /dev/null || fail "md: the job did not end after the kill"
-"$PBMS" run md_killed.yaml --resume > md_resumed.out 2>&1 || { cat md_resumed.out; fail "md: the resume"; }
-grep -q "goes on from its checkpoint .*$first.h5" md_resumed.out || { cat md_resumed.out; fail "md: not from the first point"; }
-"$PY" - "$PWD/runs/md_whole" "$PWD/runs_md/md_killed" <<'PYEOF' || fail "md: the resumed isotherm differs"
-import sys, yaml, h5py, numpy as np
-a, b = sys.argv[1:]
-sa = yaml.safe_load(open(f"{a}/summary.yaml"))["stages"]["isotherm"]["results"]
-sb = yaml.safe_load(open(f"{b}/summary.yaml"))["stages"]["isotherm"]["results"]
-bad = [k for k in sa if sa[k]["value"] != sb[k]["value"]]
-with h5py.File(f"{a}/results.h5") as fa, h5py.File(f"{b}/results.h5") as fb:
-    bad += [c for c in fa["isotherm/isotherm"] if not np.array_equal(fa["isotherm/isotherm"][c][()], fb["isotherm/isotherm"][c][()])]
-print(f"  resumed from the first point: {len(sa)} summary values and the isotherm table "
-      + ("bitwise as the whole run" if not bad else f"differ: {bad}"))
-sys.exit(1 if bad else 0)
-PYEOF
+md_killed_resumed md isotherm isotherm runs_md "$(printf 'step_%012d' "${md_steps[1]}")" \
+  "$(printf 'step_%012d' "${md_steps[0]}")"
+
+echo "== md_elastic: killed while the checkpoint after its second strained state is written"
+"$PBMS" run elastic_whole.yaml > elastic_whole.out 2>&1 || { cat elastic_whole.out; fail "elastic: the whole run"; }
+md_killed_resumed elastic elastic strains runs_elastic step_000000000002 step_000000000001
 
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
 run="$PWD/runs/pull_signalled"
