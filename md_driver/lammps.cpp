@@ -30,13 +30,15 @@ std::string describe_lammps_exit() {
 
 }  // namespace
 
-Lammps::Lammps(MPI_Comm comm, const std::filesystem::path& log_file) {
+Lammps::Lammps(MPI_Comm comm, const std::filesystem::path& log_file, bool append) {
   std::string log = log_file.string();
   g_current_log = log;
   set_unexpected_finalize_handler(&describe_lammps_exit);
-  const char* args[] = {"md_driver", "-log", log.c_str(), "-screen", "none", "-nocite"};
+  const char* args[] = {"md_driver", "-log", append ? "none" : log.c_str(),
+                        "-screen",   "none", "-nocite"};
   handle_ = lammps_open(6, const_cast<char**>(args), comm, nullptr);
   if (!handle_) throw Error("LAMMPS could not be started");
+  if (append) lammps_command(handle_, fmt::format("log {} append", log).c_str());
 }
 
 Lammps::~Lammps() {
@@ -54,18 +56,35 @@ void Lammps::comment(const std::string& text) {
   script_.push_back("# " + text);
 }
 
+void Lammps::write_restart(const std::filesystem::path& file,
+                           const std::vector<std::string>& drop) {
+  comment("write_restart: a checkpoint of the stage");
+  for (const auto& fix : drop) lammps_command(handle_, ("unfix " + fix).c_str());
+  lammps_command(handle_, fmt::format("write_restart {}", file.string()).c_str());
+}
+
+void Lammps::read_restart(const std::filesystem::path& file) {
+  lammps_command(handle_, fmt::format("read_restart {}", file.string()).c_str());
+}
+
 void Lammps::run(int64_t steps, int64_t chunk, const std::function<void(int64_t)>& after_chunk) {
-  chunk = std::max<int64_t>(1, chunk);
-  int64_t done = 0;
-  bool first = true;
-  // start/stop tell fixes (fix vector storage, ramps) the whole run's extent.
   const auto begin = static_cast<int64_t>(lammps_get_thermo(handle_, "step"));
-  while (done < steps) {
-    const int64_t n = std::min(chunk, steps - done);
-    // Setup (neighbour lists, forces) once; later chunks continue the same
-    // trajectory without redoing it.
-    const std::string cmd = fmt::format("run {} start {} stop {} pre {} post no", n, begin,
-                                        begin + steps, first ? "yes" : "no");
+  run_rest(begin, begin + steps, chunk, after_chunk);
+}
+
+void Lammps::run_rest(int64_t begin, int64_t end, int64_t chunk,
+                      const std::function<void(int64_t)>& after_chunk) {
+  chunk = std::max<int64_t>(1, chunk);
+  const auto now = static_cast<int64_t>(lammps_get_thermo(handle_, "step"));
+  int64_t done = now - begin;
+  bool first = true;
+  while (begin + done < end) {
+    const int64_t n = std::min(chunk, end - begin - done);
+    // start/stop tell fixes (fix vector storage, ramps) the whole run's
+    // extent. Setup (neighbour lists, forces) once; later chunks continue
+    // the same trajectory without redoing it.
+    const std::string cmd =
+        fmt::format("run {} start {} stop {} pre {} post no", n, begin, end, first ? "yes" : "no");
     script_.push_back(cmd);
     lammps_command(handle_, cmd.c_str());
     first = false;

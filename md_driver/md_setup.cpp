@@ -42,6 +42,10 @@ void build_crystal(Lammps& lmp, const MdMaterial& m, double a, const std::array<
   lmp.command("create_box 1 box");
   lmp.command("create_atoms 1 box");
   lmp.command(fmt::format("mass 1 {:.10g}", m.mass));
+  set_pair_style(lmp, m);
+}
+
+void set_pair_style(Lammps& lmp, const MdMaterial& m) {
   lmp.command("pair_style " + m.pair_style);
   lmp.command(fmt::format("pair_coeff * * {} {}", m.potential, m.element));
   lmp.command("neighbor 1.0 bin");
@@ -82,7 +86,7 @@ std::vector<double> column(const std::vector<std::vector<double>>& rows, size_t 
 
 TrajectoryRecorder::TrajectoryRecorder(const StageContext& ctx, Lammps& lmp,
                                        const std::string& file, int64_t every,
-                                       std::array<bool, 3> periodic)
+                                       std::array<bool, 3> periodic, int64_t resumed_after)
     : ctx_(ctx), lmp_(lmp), every_(every) {
   if (every_ <= 0) return;
   relative_ = ctx.stage() + "/" + file;
@@ -97,8 +101,10 @@ TrajectoryRecorder::TrajectoryRecorder(const StageContext& ctx, Lammps& lmp,
     opt.creator_version = fmt::format("LAMMPS {}", lmp.version());
     opt.periodic = periodic;
     opt.velocities = true;
-    writer_ = std::make_unique<H5mdWriter>(MPI_COMM_SELF, opt, ids_,
-                                           std::vector<int>(static_cast<size_t>(n), 0));
+    writer_ = resumed_after >= 0
+                  ? H5mdWriter::reopen(MPI_COMM_SELF, opt, ids_, resumed_after)
+                  : std::make_unique<H5mdWriter>(MPI_COMM_SELF, opt, ids_,
+                                                 std::vector<int>(static_cast<size_t>(n), 0));
   }
 }
 

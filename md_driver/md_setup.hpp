@@ -35,6 +35,9 @@ MdMaterial material_of(const StageContext& ctx, const std::string& name);
 // the potential and the neighbour list. `boundary` as in LAMMPS ("p p p").
 void build_crystal(Lammps& lmp, const MdMaterial& m, double a, const std::array<int, 3>& cells,
                    const std::string& boundary);
+// The potential and the neighbour list alone: what a LAMMPS restart file
+// does not hold of build_crystal's set-up.
+void set_pair_style(Lammps& lmp, const MdMaterial& m);
 
 int64_t steps_for(double time_ps, double timestep_ps);
 // A positive 31-bit LAMMPS seed derived from the run seed and a salt.
@@ -44,8 +47,10 @@ std::array<int, 3> cells_of(const YAML::Node& n);
 // Writes an H5MD frame every `every` steps when the stage asks for it.
 class TrajectoryRecorder {
  public:
+  // `resumed_after` >= 0: a resumed stage keeps the file's frames up to
+  // that step and goes on writing after them.
   TrajectoryRecorder(const StageContext& ctx, Lammps& lmp, const std::string& file, int64_t every,
-                     std::array<bool, 3> periodic);
+                     std::array<bool, 3> periodic, int64_t resumed_after = -1);
   [[nodiscard]] bool enabled() const { return every_ > 0; }
   [[nodiscard]] int64_t every() const { return every_; }
   void maybe_write(int64_t step, double time_ps);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "pbms/analysis/statistics.hpp"
 #include "pbms/error.hpp"
 #include "pbms/units.hpp"
+#include "tension_checkpoints.hpp"
 
 namespace pbms::md {
 
@@ -31,6 +33,7 @@ config::StageKindSpec TensionStage::spec() {
       "by its box with y and z held at zero stress (Nose-Hoover NPT on y, z)";
   s.material_kinds = {"eam_alloy", "eam_fs"};
   s.cacheable = true;
+  s.checkpoints = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),
       Param::choice("lateral", {"free", "periodic"},
@@ -152,15 +155,25 @@ void TensionParams::check(const std::string& stage) const {
   }
 }
 
-// Runs `steps` steps of the stage from step `offset` on, writing frames and
-// reporting progress with `label(done)`.
-void run_stage_part(StageContext& ctx, Lammps& lmp, TrajectoryRecorder& traj,
-                    const TensionParams& s, int64_t offset, int64_t steps,
-                    const std::function<std::string(int64_t)>& label) {
+// Steps a phase of the stage (equilibration, then loading, each a LAMMPS
+// run from its step 0) to its end, from where a resumed stage stands in
+// it; writes frames, reports progress with `label(done)` and writes
+// checkpoints. Chunks fall on sample boundaries, where a checkpoint cuts
+// no averaging window.
+void run_phase(StageContext& ctx, Lammps& lmp, TrajectoryRecorder& traj, TensionCheckpoints& ck,
+               const TensionParams& s, bool loading,
+               const std::function<std::string(int64_t)>& label) {
   const int64_t total = s.n_equil + s.n_load;
-  lmp.run(steps, chunk_for(total, s.traj_every), [&](int64_t done) {
+  const int64_t offset = loading ? s.n_equil : 0, steps = loading ? s.n_load : s.n_equil;
+  const int64_t align = std::lcm(std::max<int64_t>(1, s.traj_every), s.every);
+  // LAMMPS' step counter where the phase began (a minimisation advances it).
+  const auto begin =
+      static_cast<int64_t>(lmp.thermo("step")) - (ck.resumes_in(loading) ? ck.resumed()->step : 0);
+  if (ck.resumes_in(loading)) ck.adopt_script();
+  lmp.run_rest(begin, begin + steps, chunk_for(total, align), [&](int64_t done) {
     traj.maybe_write(offset + done, (offset + done) * s.dt);
     ctx.progress(offset + done, total, (offset + done) * s.dt, label(done));
+    ck.after_chunk(loading, done, offset + done, total, s.dt);
   });
 }
 
@@ -169,7 +182,24 @@ struct Grips {
   double xlo = 0, xhi = 0, length = 0;  // wire ends and grip thickness
   double gauge = 0;                     // initial length between the grips
   double speed = 0;
+  [[nodiscard]] std::vector<double> values() const { return {xlo, xhi, length, gauge, speed}; }
+  static Grips of(const std::vector<double>& v) {
+    return {v.at(0), v.at(1), v.at(2), v.at(3), v.at(4)};
+  }
 };
+
+// The fixes that hold the grips rigid and thermostat the wire between
+// them: what a resumed loading sets again (the groups and the
+// thermostat's state come with the restart file). The wire's thermostat
+// is not `nvt`, the equilibration's: LAMMPS would hand it that one's
+// state from a restart file written during equilibration.
+void hold_grips(Lammps& lmp, const TensionParams& s) {
+  lmp.command("fix hold_left left setforce 0 0 0");
+  lmp.command("fix hold_right right setforce 0 0 0");
+  lmp.command("fix move_grips grips nve");
+  lmp.command(fmt::format("fix wire_nvt wire nvt temp {0} {0} 0.1", s.temperature));
+  lmp.command("compute wire_temp wire temp");
+}
 
 // Holds the end slabs of the relaxed wire rigid and sets them moving apart,
 // the wire between them thermostatted.
@@ -190,11 +220,7 @@ Grips attach_grips(Lammps& lmp, const TensionParams& s, double a) {
   lmp.command("group right region right_grip");
   lmp.command("group grips union left right");
   lmp.command("group wire subtract all grips");
-  lmp.command("fix hold_left left setforce 0 0 0");
-  lmp.command("fix hold_right right setforce 0 0 0");
-  lmp.command("fix move_grips grips nve");
-  lmp.command(fmt::format("fix nvt wire nvt temp {0} {0} 0.1", s.temperature));
-  lmp.command("compute wire_temp wire temp");
+  hold_grips(lmp, s);
   lmp.command("reset_timestep 0");
   lmp.command(fmt::format("velocity left set {} 0 0 units box", -g.speed));
   lmp.command(fmt::format("velocity right set {} 0 0 units box", g.speed));
@@ -244,36 +270,52 @@ void sample_wire(Lammps& lmp, const TensionParams& s, const Grips& g, double are
 // The nanowire: rows of (strain, virial stress, grip-force stress, wire
 // temperature), one per sample, the first at step 0.
 std::vector<std::vector<double>> pull_nanowire(StageContext& ctx, Lammps& lmp,
-                                               const TensionParams& s, const MdMaterial& mat) {
+                                               const TensionParams& s, const MdMaterial& mat,
+                                               TensionCheckpoints& ck) {
   const double a = s.lattice_constant_of(mat), temperature = s.temperature, rate = s.rate,
                dt = s.dt;
   const double area = s.cells[1] * a * s.cells[2] * a;
-  build_crystal(lmp, mat, a, s.cells, "s s s");
-  lmp.command(fmt::format("timestep {}", dt));
-  // Relax the surfaces at 0 K first: a thin wire cut from bulk contracts by
-  // ~1 %, and doing that in MD would leave it ringing axially for many ps.
-  lmp.command("minimize 0 1e-8 1000 10000");
-  // The wire then equilibrates free: surface stress shortens a thin wire,
-  // and holding its ends at the bulk spacing would pre-stress it by GPa.
-  lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
-                          2.0 * temperature, lammps_seed(ctx.seed(), 7)));
-  lmp.command(fmt::format("fix nvt all nvt temp {0} {0} 0.1", temperature));
-  lmp.command("fix no_drift all momentum 100 linear 1 1 1 angular");
+  const auto& from = ck.resume(mat);
+  if (!from) {
+    build_crystal(lmp, mat, a, s.cells, "s s s");
+    lmp.command(fmt::format("timestep {}", dt));
+    // Relax the surfaces at 0 K first: a thin wire cut from bulk contracts
+    // by ~1 %, and doing that in MD would leave it ringing axially for many
+    // ps.
+    lmp.command("minimize 0 1e-8 1000 10000");
+    // The wire then equilibrates free: surface stress shortens a thin wire,
+    // and holding its ends at the bulk spacing would pre-stress it by GPa.
+    lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
+                            2.0 * temperature, lammps_seed(ctx.seed(), 7)));
+  } else {
+    lmp.command(fmt::format("timestep {}", dt));
+  }
+  const bool equilibrating = !from || !from->loading;
+  if (equilibrating) {
+    lmp.command(fmt::format("fix nvt all nvt temp {0} {0} 0.1", temperature));
+    lmp.command("fix no_drift all momentum 100 linear 1 1 1 angular");
+  }
   lmp.command("thermo_style custom step temp pe lx");
   lmp.command("thermo 1000");
-  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", s.traj_every, {false, false, false});
-  traj.maybe_write(0, 0.0);
-  if (s.n_equil > 0) {
-    run_stage_part(ctx, lmp, traj, s, 0, s.n_equil, [](int64_t) { return "equilibration"; });
+  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", s.traj_every, {false, false, false},
+                          from ? (from->loading ? s.n_equil : 0) + from->step : -1);
+  if (!from) traj.maybe_write(0, 0.0);
+  Grips grips;
+  if (equilibrating) {
+    run_phase(ctx, lmp, traj, ck, s, false, [](int64_t) { return "equilibration"; });
+    lmp.command("unfix nvt");
+    lmp.command("unfix no_drift");
+    grips = attach_grips(lmp, s, a);
+  } else {
+    grips = Grips::of(from->grips);
+    hold_grips(lmp, s);
   }
-  lmp.command("unfix nvt");
-  lmp.command("unfix no_drift");
-  const Grips grips = attach_grips(lmp, s, a);
+  ck.set_grips(grips.values());
   sample_wire(lmp, s, grips, area);
-  run_stage_part(ctx, lmp, traj, s, s.n_equil, s.n_load,
-                 [&](int64_t done) { return fmt::format("strain {:.4f}", done * dt * rate); });
+  run_phase(ctx, lmp, traj, ck, s, true,
+            [&](int64_t done) { return fmt::format("strain {:.4f}", done * dt * rate); });
   if (ctx.rank() == 0 && traj.enabled()) ctx.results().files.push_back(traj.relative_path());
-  return lmp.fix_array("samples", 4);
+  return ck.samples();
 }
 
 // Samples of the periodic box every `every` steps: strain lx/l0 - 1 and the
@@ -303,19 +345,23 @@ void sample_box(Lammps& lmp, double l0, int64_t every) {
 
 // The periodic crystal: rows of (strain, stress xx, yy, zz, temperature).
 std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp,
-                                               const TensionParams& s, const MdMaterial& mat) {
+                                               const TensionParams& s, const MdMaterial& mat,
+                                               TensionCheckpoints& ck) {
   const double a = s.lattice_constant_of(mat);
-  build_crystal(lmp, mat, a, s.cells, "p p p");
-  lmp.command(fmt::format("timestep {}", s.dt));
   // Strain is measured against the crystal at `lattice_constant`, which is
   // stress free at the temperature when that is the isotherm's zero-pressure
   // value; a small error in it shifts the curve, not its slope.
   const double l0 = s.cells[0] * a;
-  if (s.initial_strain != 0.0) {
-    lmp.command(fmt::format("change_box all x scale {:.15g} remap", 1.0 + s.initial_strain));
+  const auto& from = ck.resume(mat);
+  if (!from) {
+    build_crystal(lmp, mat, a, s.cells, "p p p");
+    if (s.initial_strain != 0.0) {
+      lmp.command(fmt::format("change_box all x scale {:.15g} remap", 1.0 + s.initial_strain));
+    }
+    lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
+                            2.0 * s.temperature, lammps_seed(ctx.seed(), 7)));
   }
-  lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian",
-                          2.0 * s.temperature, lammps_seed(ctx.seed(), 7)));
+  lmp.command(fmt::format("timestep {}", s.dt));
   // Nose-Hoover NPT on y and z alone (uncoupled, zero target stress) while x
   // is held, then stretched by fix deform. One fix from equilibration
   // through loading, so the barostat starts the ramp settled; a Berendsen
@@ -325,21 +371,23 @@ std::vector<std::vector<double>> pull_periodic(StageContext& ctx, Lammps& lmp,
   lmp.command(fmt::format("fix npt all npt temp {0} {0} 0.1 y 0 0 1.0 z 0 0 1.0", s.temperature));
   lmp.command("thermo_style custom step temp pe lx ly lz pxx pyy pzz");
   lmp.command("thermo 1000");
-  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", s.traj_every, {true, true, true});
-  traj.maybe_write(0, 0.0);
-  if (s.n_equil > 0) {
-    run_stage_part(ctx, lmp, traj, s, 0, s.n_equil, [](int64_t) { return "equilibration"; });
+  TrajectoryRecorder traj(ctx, lmp, "tension.h5md", s.traj_every, {true, true, true},
+                          from ? (from->loading ? s.n_equil : 0) + from->step : -1);
+  if (!from) traj.maybe_write(0, 0.0);
+  if (!from || !from->loading) {
+    run_phase(ctx, lmp, traj, ck, s, false, [](int64_t) { return "equilibration"; });
+    lmp.command("reset_timestep 0");
   }
-  lmp.command("reset_timestep 0");
   // The box grows at the constant speed rate * l0: engineering strain rate
-  // `rate` against the reference length.
+  // `rate` against the reference length. A resumed loading's fix deform
+  // takes the box it started from out of the restart file.
   lmp.command(fmt::format("fix stretch all deform 1 x vel {:.15g} remap x units box", s.rate * l0));
   sample_box(lmp, l0, s.every);
-  run_stage_part(ctx, lmp, traj, s, s.n_equil, s.n_load, [&](int64_t done) {
+  run_phase(ctx, lmp, traj, ck, s, true, [&](int64_t done) {
     return fmt::format("strain {:.4f}", s.initial_strain + done * s.dt * s.rate);
   });
   if (ctx.rank() == 0 && traj.enabled()) ctx.results().files.push_back(traj.relative_path());
-  return lmp.fix_array("samples", 5);
+  return ck.samples();
 }
 
 // Least-squares line through the samples up to fit_max. With `blocked`, the
@@ -419,15 +467,30 @@ void TensionStage::run(StageContext& ctx) {
   const TensionParams s = TensionParams::from_yaml(ctx.params());
   const MdMaterial mat = material_of(ctx, s.material);
   s.check(ctx.stage());
-  Lammps lmp(ctx.comm(), ctx.stage_dir() / "tension.log");
-  lmp.comment(fmt::format("PBMS md_tension '{}' ({}): {}x{}x{} cells, {} K, strain rate {} 1/ps",
-                          ctx.stage(), s.periodic ? "periodic" : "nanowire", s.cells[0], s.cells[1],
-                          s.cells[2], s.temperature, s.rate));
-  auto rows = s.periodic ? pull_periodic(ctx, lmp, s, mat) : pull_nanowire(ctx, lmp, s, mat);
-  report(ctx, s, std::move(rows));
-  if (ctx.rank() == 0) {
-    lmp.write_script(ctx.stage_dir() / "tension.in", "md_tension " + ctx.stage());
-    ctx.results().files.push_back(ctx.stage() + "/tension.in");
+  StageCheckpoints checkpoints(ctx);
+  std::optional<CheckpointArchive> from;
+  if (checkpoints.enabled() && checkpoints.resuming()) from = checkpoints.resume_archive();
+  // After each checkpoint the stage goes on from it in a new LAMMPS
+  // instance, as a resumed stage does (tension_checkpoints.hpp).
+  for (;;) {
+    Lammps lmp(ctx.comm(), ctx.stage_dir() / "tension.log", from.has_value());
+    lmp.comment(fmt::format("PBMS md_tension '{}' ({}): {}x{}x{} cells, {} K, strain rate {} 1/ps",
+                            ctx.stage(), s.periodic ? "periodic" : "nanowire", s.cells[0],
+                            s.cells[1], s.cells[2], s.temperature, s.rate));
+    TensionCheckpoints ck(ctx, checkpoints, lmp, s.periodic ? 5 : 4, from ? &*from : nullptr);
+    try {
+      auto rows =
+          s.periodic ? pull_periodic(ctx, lmp, s, mat, ck) : pull_nanowire(ctx, lmp, s, mat, ck);
+      checkpoints.report(ctx.results());
+      report(ctx, s, std::move(rows));
+      if (ctx.rank() == 0) {
+        lmp.write_script(ctx.stage_dir() / "tension.in", "md_tension " + ctx.stage());
+        ctx.results().files.push_back(ctx.stage() + "/tension.in");
+      }
+      return;
+    } catch (const ContinueFromCheckpoint& c) {
+      from = CheckpointArchive::read(c.file, checkpoints.identity(), ctx.comm());
+    }
   }
 }
 

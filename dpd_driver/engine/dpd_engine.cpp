@@ -11,7 +11,6 @@
 #include "kernels/periodic_wrap.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
-#include "pbms/mpi/rank_rows.hpp"
 #include "pbms/mpi/sorted_rows.hpp"
 #include "pbms/units.hpp"
 
@@ -56,7 +55,7 @@ DpdEngine::DpdEngine(MPI_Comm comm, const OrthogonalBox& box, std::unique_ptr<Pa
   compute_forces(Tally::kForcesOnly);
 }
 
-DpdEngine::State DpdEngine::gather_state() const {
+std::vector<double> DpdEngine::own_rows() const {
   std::vector<double> mine;
   mine.reserve(owned_ * kStateWidth);
   const DpdParticles& p = particles_;
@@ -71,8 +70,7 @@ DpdEngine::State DpdEngine::gather_state() const {
     mine.push_back(p.internal_energy[i]);
     for (int a = 0; a < 3; ++a) mine.push_back(i < built.size() ? built[i][a] : p.x[i][a]);
   }
-  auto gathered = mpi::gather_rank_rows(comm(), mine, kStateWidth);
-  return {std::move(gathered.rows), std::move(gathered.counts)};
+  return mine;
 }
 
 namespace {

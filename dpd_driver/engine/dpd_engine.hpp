@@ -125,16 +125,16 @@ class DpdEngine {
   void berendsen(double temperature, double tau);
 
   // What a checkpoint holds of the engine: each rank's owned particles in
-  // the order it stores them, rank after rank, as rows of kStateWidth (id,
-  // type, groups, x, image, v, f, internal energy, and the position the
-  // neighbour list was built from), and how many each rank holds. Rank 0
-  // gets them (collective).
+  // the order it stores them, as rows of kStateWidth (id, type, groups, x,
+  // image, v, f, internal energy, and the position the neighbour list was
+  // built from). A checkpoint keeps them rank after rank, with how many
+  // each rank held (State, for restore_state).
   static constexpr std::size_t kStateWidth = 19;
   struct State {
-    std::vector<double> rows;
+    std::vector<double> rows;    // every rank's, rank after rank
     std::vector<double> counts;  // per rank
   };
-  [[nodiscard]] State gather_state() const;
+  [[nodiscard]] std::vector<double> own_rows() const;
   // Takes `state` (every rank the same) as the particles after `step`. On
   // as many ranks as wrote it, each rank takes back its own particles in
   // their order and builds ghosts and list from the positions the writer

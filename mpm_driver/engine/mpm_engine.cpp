@@ -9,7 +9,6 @@
 #include "engine/point_migration.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
-#include "pbms/mpi/rank_rows.hpp"
 
 namespace pbms::mpm {
 namespace {
@@ -98,7 +97,7 @@ void MpmEngine::migrate() {
   if (ranks_ > 1) migrate_points(comm_, partition_, model_.points);
 }
 
-MpmEngine::State MpmEngine::gather_state() const {
+std::vector<double> MpmEngine::own_rows() const {
   const grid::MaterialPoints& p = model_.points;
   std::vector<double> mine;
   mine.reserve(p.size() * kStateWidth);
@@ -116,8 +115,7 @@ MpmEngine::State MpmEngine::gather_state() const {
                 {st.density, st.plastic_strain, st.internal_energy,
                  static_cast<double>(p.material[i]), static_cast<double>(p.groups[i]), p.work[i]});
   }
-  auto gathered = mpi::gather_rank_rows(comm_, mine, kStateWidth);
-  return {std::move(gathered.rows), std::move(gathered.counts)};
+  return mine;
 }
 
 void MpmEngine::restore_state(const State& state, std::int64_t steps) {

@@ -45,16 +45,16 @@ class MpmEngine {
   void migrate();
 
   // What a checkpoint holds of the engine: each rank's points in the order
-  // it stores them, rank after rank, as rows of kStateWidth (id, x, v,
-  // mass, volume0, F, stress, density, plastic strain, internal energy,
-  // material, groups, work), how many each rank holds, and the step count.
-  // Rank 0 gets them (collective).
+  // it stores them, as rows of kStateWidth (id, x, v, mass, volume0, F,
+  // stress, density, plastic strain, internal energy, material, groups,
+  // work). A checkpoint keeps them rank after rank, with how many each
+  // rank held (State, for restore_state), and the step count.
   static constexpr std::size_t kStateWidth = 30;
   struct State {
-    std::vector<double> rows;
+    std::vector<double> rows;    // every rank's, rank after rank
     std::vector<double> counts;  // per rank
   };
-  [[nodiscard]] State gather_state() const;
+  [[nodiscard]] std::vector<double> own_rows() const;
   // Takes `state` (every rank the same) as the points after `steps` steps.
   // On as many ranks as wrote it each rank takes back its own points in
   // their order, so the nodal sums run as before and the run goes on bit

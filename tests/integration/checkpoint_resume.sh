@@ -22,11 +22,16 @@ source "$(dirname "$0")/lib.sh"
 # pressures on 2 ranks) killed while writing the checkpoint after its second
 # point, resumed from its first: every summary value and the isotherm table
 # bitwise; and an md_elastic at 0 K (four strained states) the same way,
-# every summary value and the strains table bitwise. The pull without a
+# every summary value and the strains table bitwise; and md_tension (LAMMPS
+# restart files), a nanowire killed in its loading and a periodic crystal
+# killed at the end of its equilibration: every summary value, the
+# stress-strain table and every H5MD frame bitwise. The pull without a
 # checkpoint: block ends bitwise as the whole run that wrote them: writing
 # one disturbs nothing. SIGTERM to `./pbms run` during the pull: the job
 # writes a checkpoint at the next step boundary and ends non-zero within
 # 10 s, saying how to go on, and the resume from it is bitwise as above.
+# SIGTERM to every task of the job (Slurm's way) during md_tension: the
+# same, and the resume is bitwise up to the stop and round-off after.
 # Then a resume with a changed key is refused, naming it.
 export PBMS_SKIP_BUILD=1
 base="$(dirname "$0")/configs/checkpoint_dpd.yaml"
@@ -106,6 +111,26 @@ elastic["run"]["output"] = "runs"
 write("elastic_whole", elastic)
 elastic["run"]["output"] = "runs_elastic"
 write("elastic_killed", elastic)
+# MD tension through LAMMPS restart files: a small nanowire (10 x 4 x 4
+# cells, 0.4 ps at 300 K, then 2 % at 2 %/ps) and the periodic crystal, a
+# checkpoint every 100 steps, each stage 700 steps.
+tension = copy.deepcopy(md)
+tension["checkpoint"] = {"every_steps": 100}
+wire = {"name": "wire", "kind": "md_tension", "material": md["stages"][0]["material"],
+        "cells": [10, 4, 4], "temperature": 300, "lattice_constant": 3.632,
+        "strain_rate": "2 %/ps", "max_strain": 0.02, "fit_max_strain": 0.02,
+        "equilibration": "0.4 ps", "sample_every": 10, "trajectory_every": 50}
+bulk = dict(wire, name="bulk", lateral="periodic", cells=[4, 4, 4], temperature=298,
+            initial_strain=-0.01, max_strain=0.01)
+for case, stage in (("tension", wire), ("tension_periodic", bulk)):
+    tension["stages"] = [stage]
+    tension["run"]["output"] = "runs"
+    write(f"{case}_whole", tension)
+    tension["run"]["output"] = f"runs_{case}"
+    write(f"{case}_killed", tension)
+tension["stages"] = [wire]
+tension["run"]["output"] = "runs_tension_signalled"
+write("tension_signalled", tension)
 plain = copy.deepcopy(pull)
 plain.pop("checkpoint")
 write("pull_plain", plain)
@@ -264,20 +289,42 @@ md_killed_resumed() {
     { cat "${case}_resumed.out"; fail "$case: the resume"; }
   grep -q "goes on from its checkpoint .*$first.h5" "${case}_resumed.out" ||
     { cat "${case}_resumed.out"; fail "$case: not from the first point"; }
-  "$PY" - "$PWD/runs/${case}_whole" "$PWD/$output/${case}_killed" "$stage" "$table" <<'PYEOF' ||
-import sys, yaml, h5py, numpy as np
-a, b, stage, table = sys.argv[1:]
+  "$PY" - "$PWD/runs/${case}_whole" "$PWD/$output/${case}_killed" "$stage" "$table" "$first" <<'PYEOF' ||
+import sys, glob, yaml, h5py, numpy as np
+a, b, stage, table = sys.argv[1:5]
 sa = yaml.safe_load(open(f"{a}/summary.yaml"))["stages"][stage]["results"]
 sb = yaml.safe_load(open(f"{b}/summary.yaml"))["stages"][stage]["results"]
 bad = [k for k in sa if sa[k]["value"] != sb[k]["value"]]
 with h5py.File(f"{a}/results.h5") as fa, h5py.File(f"{b}/results.h5") as fb:
     t = f"{stage}/{table}"
     bad += [c for c in fa[t] if not np.array_equal(fa[t][c][()], fb[t][c][()])]
-print(f"  resumed from the first point: {len(sa)} summary values and the {table} table "
+frames = 0
+for h in glob.glob(f"{a}/{stage}/*.h5md"):
+    with h5py.File(h) as fa, h5py.File(h.replace(a, b)) as fb:
+        for q in ("position", "velocity"):
+            d = f"particles/all/{q}/value"
+            frames = fa[d].shape[0]
+            bad += [] if np.array_equal(fa[d][()], fb[d][()]) else [d]
+print(f"  resumed from {sys.argv[5]}: {len(sa)} summary values, the {table} table"
+      + (f" and {frames} H5MD frames " if frames else " ")
       + ("bitwise as the whole run" if not bad else f"differ: {bad}"))
 sys.exit(1 if bad else 0)
 PYEOF
     fail "$case: the resumed stage differs"
+}
+
+# signalled_resumed NAME RUN_DIR PAUSE PARTIAL [TO]: NAME.yaml stopped by
+# SIGTERM (stop_during_checkpoint), the message and manifest that leaves,
+# and the resume from its checkpoint.
+signalled_resumed() {
+  local name=$1 run=$2 pause=$3 partial=$4 to=${5:-launcher}
+  stop_during_checkpoint "$name.yaml" "$pause" "$partial" "$name.out" "$to"
+  grep -q "holds the run; to go on from there: ./pbms run $name.yaml --resume" "$name.out" ||
+    { cat "$name.out"; fail "$name: the stopped job does not say how to go on"; }
+  [ "$(yget "$run/manifest.yaml" status)" = stopped ] || fail "$name: the manifest does not say stopped"
+  "$PBMS" run "$name.yaml" --resume > "${name}_resumed.out" 2>&1 ||
+    { cat "${name}_resumed.out"; fail "$name: the resume after SIGTERM"; }
+  grep -o "goes on from its checkpoint .*" "${name}_resumed.out" | sed 's/^/  /'
 }
 
 echo "== md_isotherm: killed while the checkpoint after its second point is written"
@@ -291,16 +338,43 @@ echo "== md_elastic: killed while the checkpoint after its second strained state
 "$PBMS" run elastic_whole.yaml > elastic_whole.out 2>&1 || { cat elastic_whole.out; fail "elastic: the whole run"; }
 md_killed_resumed elastic elastic strains runs_elastic step_000000000002 step_000000000001
 
+echo "== md_tension: killed while writing a checkpoint, resumed from the one before (LAMMPS restart files)"
+echo "  the nanowire, killed in its loading (step 500), resumed from step 400:"
+"$PBMS" run tension_whole.yaml > tension_whole.out 2>&1 || { cat tension_whole.out; fail "tension: the whole run"; }
+md_killed_resumed tension wire stress_strain runs_tension step_000000000500 step_000000000400
+echo "  the periodic crystal, killed as its equilibration ends (step 200), resumed from step 100:"
+"$PBMS" run tension_periodic_whole.yaml > tension_periodic_whole.out 2>&1 ||
+  { cat tension_periodic_whole.out; fail "tension_periodic: the whole run"; }
+md_killed_resumed tension_periodic bulk stress_strain runs_tension_periodic step_000000000200 step_000000000100
+
+echo "== SIGTERM to every task of the job (as Slurm's --signal sends it) during md_tension's loading"
+run="$PWD/runs_tension_signalled/tension_signalled"
+signalled_resumed tension_signalled "$run" "step_000000000500:3" \
+  "$run/wire/checkpoints/step_000000000500.h5.partial" tasks
+# The stop added a checkpoint the whole run did not write, and the stage
+# went on from it in a new LAMMPS instance: bitwise up to it, round-off
+# grown by MD after it.
+"$PY" - runs/tension_whole "$run" <<'PYEOF' || fail "tension: resumed after SIGTERM, not the whole run"
+import re, sys, h5py, numpy as np
+a, b = sys.argv[1:]
+stop = int(re.search(r"step_0*(\d+)\.h5", open(f"{b}/log.txt").read().split("goes on from")[-1]).group(1))
+with h5py.File(f"{a}/wire/tension.h5md") as fa, h5py.File(f"{b}/wire/tension.h5md") as fb:
+    steps = fa["particles/all/position/step"][()]
+    pa, pb = fa["particles/all/position/value"][()], fb["particles/all/position/value"][()]
+    before = [k for k in range(len(steps)) if steps[k] <= stop]
+    after = [k for k in range(len(steps)) if steps[k] > stop]
+    exact = all(np.array_equal(pa[k], pb[k]) for k in before)
+    drift = max(np.max(np.abs(pa[k] - pb[k])) for k in after) if after else 0.0
+print(f"  stopped after step {stop}: frames up to it bitwise: {exact}; later frames within {drift:.1e} A")
+sys.exit(0 if exact and drift < 1e-9 else 1)
+PYEOF
+
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
 run="$PWD/runs/pull_signalled"
-stop_during_checkpoint pull_signalled.yaml "step_000000000500:3" \
-  "$run/pull/checkpoints/step_000000000500.h5.partial" signalled.out
-grep -q "checkpoint pull/checkpoints/step_000000000510.h5 holds the run; to go on from there: ./pbms run pull_signalled.yaml --resume" signalled.out ||
-  { cat signalled.out; fail "the stopped job does not say how to go on"; }
-[ "$(yget "$run/manifest.yaml" status)" = stopped ] || fail "the manifest does not say stopped"
-"$PBMS" run pull_signalled.yaml --resume > signalled_resumed.out 2>&1 ||
-  { cat signalled_resumed.out; fail "the resume after SIGTERM"; }
-grep -o "goes on from its checkpoint .*" signalled_resumed.out | sed 's/^/  /'
+signalled_resumed pull_signalled "$run" "step_000000000500:3" \
+  "$run/pull/checkpoints/step_000000000500.h5.partial"
+grep -q "checkpoint pull/checkpoints/step_000000000510.h5 holds the run" pull_signalled.out ||
+  { cat pull_signalled.out; fail "the stop is not at the next 10-step boundary"; }
 compare pull_whole pull_signalled pull 0 0 || fail "resumed after SIGTERM, not bitwise"
 
 echo "== writing checkpoints changes nothing: the pull without checkpoint:"

@@ -54,13 +54,25 @@ job_process() {
   echo "$found"
 }
 
-# SIGTERM to `./pbms run CONFIG` while it holds the checkpoint write PAUSE
+# The pids of every program of this directory's job: the coupler and the
+# drivers, every rank.
+job_tasks() {
+  local p
+  for p in $(pgrep -f "build/bin/(coupler|dpd_driver|mpm_driver|md_driver)"); do
+    [[ "$(readlink "/proc/$p/exe" 2>/dev/null)" =~ /(coupler|dpd_driver|mpm_driver|md_driver)$ ]] ||
+      continue
+    [[ "$(readlink "/proc/$p/cwd" 2>/dev/null)" == "$PWD" ]] && echo "$p"
+  done
+}
+
+# SIGTERM to `./pbms run CONFIG` (TO = launcher, the default) or to every
+# task of its job (TO = tasks) while it holds the checkpoint write PAUSE
 # (NAME:SECONDS, so that the signal finds the stage running whatever the
 # machine's speed) and FILE (that write's .partial) exists; the job must end
 # non-zero within 10 s. Its output goes to OUT:
-# stop_during_checkpoint CONFIG PAUSE FILE OUT
+# stop_during_checkpoint CONFIG PAUSE FILE OUT [TO]
 stop_during_checkpoint() {
-  local config=$1 pause=$2 file=$3 out=$4 launcher t0
+  local config=$1 pause=$2 file=$3 out=$4 to=${5:-launcher} launcher t0
   PBMS_TEST_CHECKPOINT_PAUSE="$pause" "$PBMS" run "$config" > "$out" 2>&1 &
   launcher=$!
   for _ in $(seq 1 600); do
@@ -69,7 +81,13 @@ stop_during_checkpoint() {
     sleep 0.1
   done
   t0=$(date +%s.%N)
-  kill -TERM $launcher
+  if [ "$to" = tasks ]; then
+    # As Slurm's --signal does: every task of the job gets it, mpirun and
+    # the launcher none.
+    kill -TERM $(job_tasks)
+  else
+    kill -TERM $launcher
+  fi
   timeout 10 tail --pid=$launcher -f /dev/null || fail "the job did not end within 10 s of SIGTERM"
   echo "  ended $(printf '%.1f' "$(echo "$(date +%s.%N) - $t0" | bc)") s after SIGTERM"
   ! wait $launcher || fail "the signalled job exited 0"

@@ -38,6 +38,9 @@ TEST(CheckpointArchive, ReadsBackEveryArrayBitForBit) {
   a.put("engine/particles", {1.0, -2.5e-300, 0.1 + 0.2});
   a.put("engine/step", 800.0);
   a.put("probes/empty", std::vector<double>{});
+  std::string restart("LAMMPS\0\x01\xff restart", 17);
+  a.put_bytes("lammps/restart", restart);
+  a.put_bytes("lammps/empty", "");
   a.write(file, kStage + "; PBMS 0.1.0 (abc)");
   EXPECT_FALSE(fs::exists(file.string() + ".partial"));
   const CheckpointArchive b =
@@ -47,6 +50,10 @@ TEST(CheckpointArchive, ReadsBackEveryArrayBitForBit) {
   EXPECT_TRUE(b.has("probes/empty"));
   EXPECT_TRUE(b.get("probes/empty").empty());
   EXPECT_THROW((void)b.get("tension/strain"), pbms::Error);
+  EXPECT_EQ(b.bytes("lammps/restart"), restart);
+  EXPECT_EQ(b.bytes("lammps/empty"), "");
+  EXPECT_FALSE(b.has("lammps/restart"));  // bytes are not an array
+  EXPECT_THROW((void)b.bytes("engine/step"), pbms::Error);
   fs::remove(file);
 }
 

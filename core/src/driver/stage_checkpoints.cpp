@@ -77,10 +77,10 @@ CheckpointArchive StageCheckpoints::resume_archive() const {
   return CheckpointArchive::read(ctx_.checkpoint_plan().resume_from, identity(), ctx_.comm());
 }
 
-bool StageCheckpoints::due(std::int64_t step, std::int64_t total) {
+bool StageCheckpoints::due_after(std::int64_t previous, std::int64_t step, std::int64_t total) {
   const CheckpointPlan& plan = ctx_.checkpoint_plan();
   if (!plan.enabled() || step >= total) return false;
-  if (plan.every_steps > 0 && step % plan.every_steps == 0) return true;
+  if (plan.every_steps > 0 && step / plan.every_steps > previous / plan.every_steps) return true;
   if (!(plan.every_seconds > 0.0)) return false;
   // Clocks differ between ranks and programs: rank 0's decides for its
   // program, and any program's for all.
@@ -99,10 +99,8 @@ std::string StageCheckpoints::write(std::int64_t step, double sim_time_ps,
     return fmt::format("{}/checkpoints/step_{:012d}{}.h5", ctx_.stage(), step,
                        part.empty() ? std::string() : "." + part);
   };
-  if (ctx_.rank() == 0) {
-    archive.write(ctx_.run_dir() / file(part_), identity());
-    ctx_.checkpoint_written(step, sim_time_ps, file(part_));
-  }
+  archive.write(ctx_.run_dir() / file(part_), identity(), ctx_.comm());
+  if (ctx_.rank() == 0) ctx_.checkpoint_written(step, sim_time_ps, file(part_));
   mpi::check(MPI_Barrier(ctx_.comm()), "MPI_Barrier");
   last_ = std::chrono::steady_clock::now();
   return file("");

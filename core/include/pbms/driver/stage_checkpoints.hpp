@@ -37,12 +37,18 @@ class StageCheckpoints {
   // Collective: whether a checkpoint is due after `step` of `total` (every
   // N steps, or every T minutes of wall time as rank 0's clock says). Never
   // after the last step: the stage's results follow at once.
-  [[nodiscard]] bool due(std::int64_t step, std::int64_t total);
-  // Collective; rank 0 writes `archive` and tells the coupler. Returns the
+  [[nodiscard]] bool due(std::int64_t step, std::int64_t total) {
+    return due_after(step - 1, step, total);
+  }
+  // The same for a stage that can stop only every so many steps (an MD
+  // run's chunks): due when a multiple of N lies in (previous, step].
+  [[nodiscard]] bool due_after(std::int64_t previous, std::int64_t step, std::int64_t total);
+  // Collective: every rank writes its part of `archive` (parallel HDF5),
+  // then rank 0 tells the coupler. Returns the
   // checkpoint's name as the coupler records it (the main part's file),
   // relative to the run directory.
   std::string write(std::int64_t step, double sim_time_ps, const CheckpointArchive& archive);
-  // write() of the archive `make` fills, timed (gather included).
+  // write() of the archive `make` fills, timed (filling included).
   std::string write(std::int64_t step, double sim_time_ps,
                     const std::function<CheckpointArchive()>& make);
   // The attributes checkpoints_written and checkpoint_seconds (rank 0's
