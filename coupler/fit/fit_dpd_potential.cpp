@@ -7,6 +7,7 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlopt.hpp>
 
 // GCC 12 warns inside its own AVX-512 intrinsics when Eigen vectorises with
@@ -22,6 +23,7 @@
 #include "fit/evaluation_journal.hpp"
 #include "fit/fit_objective.hpp"
 #include "fit/parameter_uncertainty.hpp"
+#include "pbms/analysis/cubic_moduli.hpp"
 #include "pbms/error.hpp"
 #include "pbms/io/yaml_file.hpp"
 #include "pbms/units.hpp"
@@ -31,10 +33,11 @@ namespace {
 
 constexpr const char* kDriver = "dpd_driver";
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Candidates around the best point that measure the parameters' errors: a
+// Candidates around the best point that measure the Jacobian (the
+// parameters' errors, the directions the targets leave undetermined): a
 // step of 1 % of each parameter's bounds either side.
-constexpr int kErrorPhase = 2;
-constexpr double kErrorStep = 1e-2;
+constexpr int kJacobianPhase = 2;
+constexpr double kJacobianStep = 1e-2;
 
 struct Evaluation {
   int phase = 0;  // 0: global search, 1: local polish
@@ -66,7 +69,7 @@ const config::Param& schema_of(const CouplerStageContext& ctx) {
 }
 
 const char* phase_name(int phase) {
-  return phase == 0 ? "global" : phase == 1 ? "local" : "parameter errors";
+  return phase == 0 ? "global" : phase == 1 ? "local" : "Jacobian";
 }
 
 nlopt::algorithm algorithm(const std::string& name) {
@@ -113,7 +116,8 @@ class Fit {
                            evaluations_.size() - journal_.replayed()));
     }
     const size_t best = *best_index(final_t);
-    report(best, uncertainties(best));
+    const auto jacobian = jacobian_at(best);
+    report(best, uncertainties(best, jacobian), degeneracy(best, jacobian));
   }
 
  private:
@@ -137,7 +141,7 @@ class Fit {
     int n = 0;
     if (s_.optimizer.global != "none") n += s_.optimizer.global_evaluations;
     if (s_.optimizer.local != "none") n += s_.optimizer.local_evaluations;
-    if (s_.judge.temperature > 0.0) n += 2 * static_cast<int>(s_.free.size());  // errors
+    n += 2 * static_cast<int>(s_.free.size());  // the Jacobian at the best point
     return std::max(n, 1);
   }
 
@@ -321,7 +325,7 @@ class Fit {
     std::optional<size_t> best;
     for (size_t i = 0; i < evaluations_.size(); ++i) {
       const auto& e = evaluations_[i];
-      if (!e.judgement.ok || e.temperature != temperature || e.phase == kErrorPhase) continue;
+      if (!e.judgement.ok || e.temperature != temperature || e.phase == kJacobianPhase) continue;
       if (!best || e.objective < evaluations_[*best].objective) best = i;
     }
     return best;
@@ -335,13 +339,13 @@ class Fit {
     return x;
   }
 
-  // The fitted residuals: trained isotherm rows, then the targeted Cij.
+  // The fitted residuals: trained isotherm rows, then the targeted modes.
   std::vector<double> fitted_residuals(const Residuals& r) const {
     std::vector<double> out;
     for (size_t i = 0; i < r.isotherm.size(); ++i) {
       if (!s_.isotherm->held_out[i]) out.push_back(r.isotherm[i]);
     }
-    for (const auto& c : {r.c11, r.c12, r.c44}) {
+    for (const auto& c : r.elastic) {
       if (c) out.push_back(*c);
     }
     return out;
@@ -363,51 +367,91 @@ class Fit {
     }
     if (s_.elastic) {
       const ElasticTarget& el = *s_.elastic;
-      const auto add = [&](const std::optional<double>& t, const std::optional<double>& e) {
-        if (t) out.push_back(e ? *e / *t : 0.0);
-      };
-      add(el.c11, j.c11_error);
-      add(el.c12, j.c12_error);
-      add(el.c44, j.c44_error);
+      for (const ElasticMode m : elastic_modes(el)) {
+        const auto e = mode_error(m, j.c11_error, j.c12_error, j.c44_error);
+        out.push_back(e ? *e / *mode_value(m, el.c11, el.c12, el.c44) : 0.0);
+      }
     }
     return out;
   }
 
-  // Standard errors of the fitted parameters from the judge's sampling
-  // errors, with J by central differences of 1 % of each parameter's bounds
-  // (two candidates per parameter, journalled like any other). A sampled
-  // judge's volumes decorrelate under any change of the parameters, so the
-  // step must be large enough for the change to stand above that noise.
-  // NaN for a static fit, which has no noise.
-  std::vector<double> uncertainties(size_t best) {
-    std::vector<double> none(s_.free.size(), kNaN);
-    if (!(s_.judge.temperature > 0.0)) return none;
+  using Jacobian = std::vector<std::vector<double>>;
+
+  // The Jacobian of the fitted residuals at the best point with respect to
+  // the parameters' values, by central differences of 1 % of each
+  // parameter's bounds (two candidates per parameter, journalled like any
+  // other); none when a candidate fails or the best point sits on a bound.
+  // A sampled judge's volumes decorrelate under any change of the
+  // parameters, so the step must be large enough for the change to stand
+  // above that noise.
+  std::optional<Jacobian> jacobian_at(size_t best) {
     const Evaluation centre = evaluations_[best];
     const size_t m = fitted_residuals(centre.residuals).size();
-    std::vector<std::vector<double>> jacobian(m, std::vector<double>(s_.free.size()));
+    Jacobian jacobian(m, std::vector<double>(s_.free.size()));
     for (size_t k = 0; k < s_.free.size(); ++k) {
       std::vector<double> x;
       for (size_t j = 0; j < s_.free.size(); ++j) x.push_back(to_unit(j, centre.params[j]));
       // Both sides inside the box: the step shrinks near a bound.
-      const double h = std::min({kErrorStep, x[k], 1.0 - x[k]});
-      if (!(h > 0.0)) return none;
+      const double h = std::min({kJacobianStep, x[k], 1.0 - x[k]});
+      if (!(h > 0.0)) return std::nullopt;
       std::vector<double> side[2];
       double p[2];
       for (int s = 0; s < 2; ++s) {
         std::vector<double> xs = x;
         xs[k] += s == 0 ? -h : h;
-        evaluate(xs, kErrorPhase, centre.temperature);
+        evaluate(xs, kJacobianPhase, centre.temperature);
         const Evaluation& e = evaluations_.back();
-        if (!e.judgement.ok) return none;
+        if (!e.judgement.ok) return std::nullopt;
         side[s] = fitted_residuals(e.residuals);
         p[s] = e.params[k];
       }
       for (size_t i = 0; i < m; ++i) jacobian[i][k] = (side[1][i] - side[0][i]) / (p[1] - p[0]);
     }
-    return parameter_errors(jacobian, residual_errors(centre.judgement));
+    return jacobian;
   }
 
-  void report(size_t best, const std::vector<double>& errors) {
+  // Standard errors of the fitted parameters from the judge's sampling
+  // errors; NaN for a static fit, which has no noise.
+  std::vector<double> uncertainties(size_t best, const std::optional<Jacobian>& jacobian) const {
+    if (!(s_.judge.temperature > 0.0) || !jacobian) {
+      return std::vector<double>(s_.free.size(), kNaN);
+    }
+    return parameter_errors(*jacobian, residual_errors(evaluations_[best].judgement));
+  }
+
+  // How the objective weighs each fitted residual: it is the squared norm
+  // of the residuals times these.
+  std::vector<double> fitted_row_scales(const Residuals& r) const {
+    std::vector<double> out;
+    if (s_.isotherm) {
+      const auto& held = s_.isotherm->held_out;
+      const auto n = static_cast<double>(std::count(held.begin(), held.end(), false));
+      for (size_t i = 0; i < r.isotherm.size(); ++i) {
+        if (!held[i]) out.push_back(std::sqrt(s_.isotherm->weight / n));
+      }
+    }
+    if (s_.elastic) {
+      const auto n = static_cast<double>(
+          std::count_if(r.elastic.begin(), r.elastic.end(), [](const auto& c) { return c; }));
+      for (const auto& c : r.elastic) {
+        if (c) out.push_back(std::sqrt(s_.elastic->weight / n));
+      }
+    }
+    return out;
+  }
+
+  // The Jacobian per step of a parameter's whole bounds, rows weighed as
+  // the objective weighs them.
+  Degeneracy degeneracy(size_t best, const std::optional<Jacobian>& jacobian) const {
+    if (!jacobian) return {};
+    Jacobian unit = *jacobian;
+    for (auto& row : unit) {
+      for (size_t k = 0; k < row.size(); ++k) row[k] *= s_.free[k].upper - s_.free[k].lower;
+    }
+    return degeneracy_of(unit, fitted_row_scales(evaluations_[best].residuals));
+  }
+
+  void report(size_t best, const std::vector<double>& errors, const Degeneracy& degeneracy) {
     const Evaluation& e = evaluations_[best];
     auto& r = ctx_.results();
     const std::string& style = s_.style;
@@ -428,6 +472,35 @@ class Fit {
     log_table();
     if (s_.isotherm) isotherm_table(e);
     if (s_.elastic) elastic_table(e);
+    report_degeneracy(degeneracy);
+  }
+
+  // The singular values and directions of the weighted Jacobian, in the
+  // log, as a table (a direction's parameter steps per singular value) and
+  // as the condition number.
+  void report_degeneracy(const Degeneracy& d) {
+    if (d.singular_values.empty()) return;
+    auto& r = ctx_.results();
+    r.add_scalar("jacobian_condition_number", d.condition_number(), "1");
+    r.add_column("degeneracy", "singular_value", "1", d.singular_values);
+    const std::string& style = s_.style;
+    for (size_t k = 0; k < s_.free.size(); ++k) {
+      std::vector<double> step;
+      for (const auto& v : d.directions)
+        step.push_back(v[k] * (s_.free[k].upper - s_.free[k].lower));
+      r.add_column("degeneracy", "d_" + s_.free[k].name,
+                   parameter_unit(potential_schema_, style, s_.free[k].name), step);
+    }
+    const auto& weakest = d.directions.back();
+    std::string along;
+    for (size_t k = 0; k < s_.free.size(); ++k) {
+      along += fmt::format(" {} {:+.3g}", s_.free[k].name,
+                           weakest[k] * (s_.free[k].upper - s_.free[k].lower));
+    }
+    ctx_.log(fmt::format(
+        "Jacobian singular values {:.3g} (condition number {:.3g}); the weakest direction, per "
+        "unit step across the bounds:{}",
+        fmt::join(d.singular_values, ", "), d.condition_number(), along));
   }
 
   void write_potential(const YAML::Node& potential) {
@@ -523,6 +596,19 @@ class Fit {
     r.add_column(
         "elastic", "fitted_std_error", "GPa",
         {gpa(e.judgement.c11_error), gpa(e.judgement.c12_error), gpa(e.judgement.c44_error)});
+    // What tension feels, and the modes the fit weighs.
+    const auto& j = e.judgement;
+    if (!j.c11 || !j.c12) return;
+    const analysis::CubicModuli fitted{*j.c11, *j.c12, j.c44.value_or(0.0)};
+    r.add_scalar("bulk_modulus", fitted.bulk_modulus() / units::kBarPerGPa, "GPa");
+    r.add_scalar("tetragonal_shear_modulus", fitted.tetragonal_shear_modulus() / units::kBarPerGPa,
+                 "GPa");
+    r.add_scalar("youngs_modulus_100", fitted.youngs_modulus_100() / units::kBarPerGPa, "GPa");
+    if (el.c11 && el.c12) {
+      const analysis::CubicModuli target{*el.c11, *el.c12, el.c44.value_or(0.0)};
+      r.add_scalar("youngs_modulus_100_target", target.youngs_modulus_100() / units::kBarPerGPa,
+                   "GPa");
+    }
   }
 
   CouplerStageContext& ctx_;

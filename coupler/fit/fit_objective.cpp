@@ -14,6 +14,76 @@ std::optional<double> relative(const std::optional<double>& got,
 
 }  // namespace
 
+std::vector<ElasticMode> elastic_modes(const ElasticTarget& t) {
+  std::vector<ElasticMode> modes;
+  if (t.c11 && t.c12) {
+    modes = {ElasticMode::kBulk, ElasticMode::kTetragonalShear};
+  } else if (t.c11) {
+    modes = {ElasticMode::kC11};
+  } else if (t.c12) {
+    modes = {ElasticMode::kC12};
+  }
+  if (t.c44) modes.push_back(ElasticMode::kC44);
+  return modes;
+}
+
+const char* mode_name(ElasticMode m) {
+  switch (m) {
+    case ElasticMode::kBulk:
+      return "bulk_modulus";
+    case ElasticMode::kTetragonalShear:
+      return "tetragonal_shear_modulus";
+    case ElasticMode::kC44:
+      return "c44";
+    case ElasticMode::kC11:
+      return "c11";
+    case ElasticMode::kC12:
+      return "c12";
+  }
+  return "";
+}
+
+std::optional<double> mode_value(ElasticMode m, const std::optional<double>& c11,
+                                 const std::optional<double>& c12,
+                                 const std::optional<double>& c44) {
+  switch (m) {
+    case ElasticMode::kBulk:
+      if (c11 && c12) return (*c11 + 2.0 * *c12) / 3.0;
+      return std::nullopt;
+    case ElasticMode::kTetragonalShear:
+      if (c11 && c12) return 0.5 * (*c11 - *c12);
+      return std::nullopt;
+    case ElasticMode::kC44:
+      return c44;
+    case ElasticMode::kC11:
+      return c11;
+    case ElasticMode::kC12:
+      return c12;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> mode_error(ElasticMode m, const std::optional<double>& e11,
+                                 const std::optional<double>& e12,
+                                 const std::optional<double>& e44) {
+  const auto sq = [](const std::optional<double>& e) { return e ? *e * *e : 0.0; };
+  switch (m) {
+    case ElasticMode::kBulk:
+      if (e11 || e12) return std::sqrt(sq(e11) + 4.0 * sq(e12)) / 3.0;
+      return std::nullopt;
+    case ElasticMode::kTetragonalShear:
+      if (e11 || e12) return 0.5 * std::sqrt(sq(e11) + sq(e12));
+      return std::nullopt;
+    case ElasticMode::kC44:
+      return e44;
+    case ElasticMode::kC11:
+      return e11;
+    case ElasticMode::kC12:
+      return e12;
+  }
+  return std::nullopt;
+}
+
 Residuals FitObjective::residuals(const Judgement& j) const {
   Residuals r;
   if (isotherm_) {
@@ -23,9 +93,11 @@ Residuals FitObjective::residuals(const Judgement& j) const {
     }
   }
   if (elastic_) {
-    r.c11 = relative(j.c11, elastic_->c11);
-    r.c12 = relative(j.c12, elastic_->c12);
-    r.c44 = relative(j.c44, elastic_->c44);
+    const ElasticTarget& t = *elastic_;
+    for (const ElasticMode m : elastic_modes(t)) {
+      r.elastic.push_back(
+          relative(mode_value(m, j.c11, j.c12, j.c44), mode_value(m, t.c11, t.c12, t.c44)));
+    }
   }
   return r;
 }
@@ -45,7 +117,7 @@ double FitObjective::value(const Residuals& r) const {
   if (elastic_) {
     double sum = 0.0;
     int n = 0;
-    for (const auto& c : {r.c11, r.c12, r.c44}) {
+    for (const auto& c : r.elastic) {
       if (!c) continue;
       sum += *c * *c;
       ++n;
@@ -60,7 +132,7 @@ double FitObjective::max_trained(const Residuals& r) const {
   for (size_t i = 0; i < r.isotherm.size(); ++i) {
     if (!isotherm_->held_out[i]) m = std::max(m, std::abs(r.isotherm[i]));
   }
-  for (const auto& c : {r.c11, r.c12, r.c44}) {
+  for (const auto& c : r.elastic) {
     if (c) m = std::max(m, std::abs(*c));
   }
   return m;

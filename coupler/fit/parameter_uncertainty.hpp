@@ -14,4 +14,23 @@ namespace pbms::coupler::fit {
 std::vector<double> parameter_errors(const std::vector<std::vector<double>>& jacobian,
                                      const std::vector<double>& sigma);
 
+// How well the targets determine the parameters about the best point: the
+// singular values of the Jacobian of the residuals, each row scaled as the
+// objective weighs it (the objective is then the squared norm), with
+// respect to the parameters in the unit box of their bounds; largest first.
+// Each direction is a unit vector in that box. A direction whose singular
+// value is small beside the largest moves the parameters without moving the
+// residuals: the targets do not determine it (two different parameter sets
+// give nearly the same targets).
+struct Degeneracy {
+  std::vector<double> singular_values;
+  std::vector<std::vector<double>> directions;  // one per singular value
+  // Largest over smallest singular value (infinite when the smallest is 0).
+  [[nodiscard]] double condition_number() const;
+};
+
+// Empty when the Jacobian has fewer rows than columns or none.
+Degeneracy degeneracy_of(const std::vector<std::vector<double>>& jacobian,
+                         const std::vector<double>& row_scale);
+
 }  // namespace pbms::coupler::fit

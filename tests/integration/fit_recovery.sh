@@ -12,10 +12,15 @@ source "$(dirname "$0")/lib.sh"
 #  - the Morse fit with a small budget on dpd_driver with 1 and 2 ranks
 #    (two one-rank judging groups) gives the same parameters, bit for bit;
 #  - no candidate is judged twice in a row (Levenberg-Marquardt's repeat),
-#    and the polish judges about its budget, no more.
+#    and the polish judges about its budget, no more;
+#  - the degeneracy report finds the line of Sutton-Chen parameters
+#    (epsilon, a, c) that leaves every target as it is, and finds none in
+#    the recovery of epsilon, c and n.
 cfg="$ROOT/tests/integration/configs"
 "$PBMS" run "$cfg/fit_recovery_morse.yaml" > morse.txt 2>&1 || { cat morse.txt; fail "Morse fit"; }
 "$PBMS" run "$cfg/fit_recovery_sutton_chen.yaml" > sc.txt 2>&1 || { cat sc.txt; fail "Sutton-Chen fit"; }
+"$PBMS" run "$cfg/fit_degeneracy_sutton_chen.yaml" > degenerate.txt 2>&1 ||
+  { cat degenerate.txt; fail "the degenerate Sutton-Chen fit"; }
 grep -q "\[fit\] evaluation .* evaluations/s | ETA .* best" runs/fit_recovery_morse/log.txt ||
   fail "no progress lines (evaluation n of N, best objective, ETA) in the log"
 # A small budget, judged on one group and on two.
@@ -55,6 +60,31 @@ for run, config, free in (("fit_recovery_morse", "fit_recovery_morse.yaml", ("d0
     written = yaml.safe_load(open(f"runs/{run}/fit/potential.yaml"))
     check(all(written[k] == fit[k]["value"] for k in free) and written["style"] == t["style"],
           f"{run}: fit/potential.yaml holds the fitted parameters")
+
+# The degeneracy report. Sutton-Chen with epsilon, a and c free has a line
+# of parameters with the same static energy (the config says why): the
+# Jacobian's smallest singular value must vanish beside the others, along
+# (d epsilon, d a, d c) = (-n epsilon, a, (n - m/2) c) per unit of ln s.
+# The recovery of epsilon, c and n is determined: its smallest singular
+# value stands well clear of zero.
+import numpy as np
+for run in ("fit_degeneracy_sutton_chen", "fit_recovery_sutton_chen"):
+    r = yaml.safe_load(open(f"runs/{run}/summary.yaml"))["stages"]["fit"]["results"]
+    s = h5py.File(f"runs/{run}/results.h5")["fit/degeneracy/singular_value"][:]
+    print(f"     {run}: singular values {', '.join(f'{x:.3g}' for x in s)}, "
+          f"condition number {r['jacobian_condition_number']['value']:.3g}")
+r = yaml.safe_load(open("runs/fit_degeneracy_sutton_chen/summary.yaml"))["stages"]["fit"]["results"]
+g = h5py.File("runs/fit_degeneracy_sutton_chen/results.h5")["fit/degeneracy"]
+s = g["singular_value"][:]
+weakest = np.array([g["d_epsilon"][-1], g["d_a"][-1], g["d_c"][-1]])
+eps, a, c, n, m = r["epsilon"]["value"], r["a"]["value"], r["c"]["value"], 9, 6
+line = np.array([-n * eps, a, (n - m / 2) * c])
+cosine = abs(weakest @ line) / np.linalg.norm(weakest) / np.linalg.norm(line)
+check(r["objective"]["value"] < 1e-10, f"degenerate fit: the targets are met (objective {r['objective']['value']:.1e})")
+check(s[-1] < 1e-4 * s[-2], f"degenerate fit: smallest singular value {s[-1]:.2e} against the next {s[-2]:.2e} (below 1e-4 of it)")
+check(cosine > 0.9999, f"degenerate fit: the weakest direction lies along the invariant line (|cos| = {cosine:.6f})")
+s = h5py.File("runs/fit_recovery_sutton_chen/results.h5")["fit/degeneracy/singular_value"][:]
+check(s[-1] > 1e-3 * s[0], f"determined fit: smallest singular value {s[-1]:.2e}, above 1e-3 of the largest {s[0]:.2e}")
 
 # Failed candidates: recorded with status 0, a penalty and a reason.
 h = h5py.File("runs/fit_recovery_morse/results.h5")["fit"]
