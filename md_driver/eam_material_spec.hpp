@@ -1,6 +1,7 @@
 // The material kinds md_driver's stages take: embedded-atom potentials of a
-// LAMMPS setfl file (eam_alloy, eam_fs). Their keys are read into MdMaterial
-// (md_setup.hpp).
+// LAMMPS setfl file (eam_alloy, eam_fs), and Sutton-Chen, which md_driver
+// tabulates as one (sutton_chen_setfl.hpp). Their keys are read into
+// MdMaterial (md_setup.hpp).
 #pragma once
 
 #include <vector>

@@ -27,7 +27,7 @@ config::StageKindSpec ElasticStage::spec() {
   s.doc =
       "Cubic elastic constants from +/- finite strains: relaxed at 0 K, and optionally "
       "averaged by NVT MD at a temperature";
-  s.material_kinds = {"eam_alloy", "eam_fs"};
+  s.material_kinds = {"eam_alloy", "eam_fs", "sutton_chen"};
   s.cacheable = true;
   s.checkpoints = true;
   s.params = {

@@ -26,7 +26,7 @@ config::StageKindSpec IsothermStage::spec() {
   s.doc =
       "Pressure-volume isotherm of a periodic crystal by NPT MD (Nose-Hoover), with a "
       "Birch-Murnaghan fit";
-  s.material_kinds = {"eam_alloy", "eam_fs"};
+  s.material_kinds = {"eam_alloy", "eam_fs", "sutton_chen"};
   s.cacheable = true;
   s.params = {
       Param::identifier("material", "Material to simulate").require().material(),

@@ -11,24 +11,28 @@
 #include "lammps.hpp"
 #include "pbms/driver/stage_kind.hpp"
 #include "pbms/io/h5md_writer.hpp"
+#include "sutton_chen_setfl.hpp"
 
 namespace pbms::md {
 
 struct MdMaterial {
   std::string name;
   std::string pair_style;  // "eam/alloy"
-  std::string potential;
+  std::string potential;   // the setfl file (for sutton_chen, the one written)
   std::string element;
   double mass = 0.0;
   std::string lattice;  // "fcc"
   double lattice_constant = 0.0;
+  std::optional<SuttonChenParameters> sutton_chen;  // a sutton_chen kind's
 
   // The `materials:` entry `n`, named `name`. Its kind picks the pair
-  // style; a kind other than eam_alloy or eam_fs is refused.
+  // style; a kind other than eam_alloy, eam_fs or sutton_chen is refused.
   static MdMaterial from_yaml(const std::string& name, const YAML::Node& n);
 };
 
-// The resolved `materials:` entry that a stage's `material` key names.
+// The resolved `materials:` entry that a stage's `material` key names
+// (collective). A sutton_chen material's table is written into the stage's
+// directory first, as <name>.sutton_chen.eam.alloy.
 MdMaterial material_of(const StageContext& ctx, const std::string& name);
 
 // Commands for units, atoms, an `cells` block of `lattice` at constant `a`,

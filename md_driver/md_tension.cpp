@@ -31,7 +31,7 @@ config::StageKindSpec TensionStage::spec() {
       "Uniaxial tension along x at a constant strain rate: a nanowire with free surfaces "
       "pulled by rigid grips (Nose-Hoover NVT), or a crystal periodic in x, y, z stretched "
       "by its box with y and z held at zero stress (Nose-Hoover NPT on y, z)";
-  s.material_kinds = {"eam_alloy", "eam_fs"};
+  s.material_kinds = {"eam_alloy", "eam_fs", "sutton_chen"};
   s.cacheable = true;
   s.checkpoints = true;
   s.params = {
