@@ -475,6 +475,38 @@ def plot_runs_together(stages, outdir):
     return written
 
 
+def plot_inclusion(stages, outdir):
+    """The seed's fig. 6.4: the volume ratio of a body held in a gas (each
+    concurrent stage with a gas and a volume probe) against the gas pressure
+    it reached, beside the bulk isotherms of the run (dpd_isotherm,
+    md_isotherm) as V/V0 against P."""
+    held = [s for s in stages if s.kind == "concurrent" and s.scalar("volume_ratio") is not None
+            and s.scalar("gas_pressure") is not None]
+    if not held:
+        return []
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    for k, st in enumerate(s for s in stages if s.kind in ("dpd_isotherm", "md_isotherm")):
+        t = st.tables.get("isotherm")
+        if t is None or not (t.has("pressure") and t.has("volume_ratio")):
+            continue
+        scale = 1.0 if st.kind == "dpd_isotherm" else 1.0 / BAR_PER_GPA
+        order = np.argsort(t["pressure"])
+        what = "bulk DPD" if st.kind == "dpd_isotherm" else "bulk MD"
+        ax.plot(t["pressure"][order] * scale, t["volume_ratio"][order], "s-" if k else "^-",
+                ms=5, lw=1.0, label=f"{what} ({st.name})")
+    p = [st.scalar("gas_pressure") for st in held]
+    v = [st.scalar("volume_ratio") for st in held]
+    ax.plot(p, v, "o", ms=7, color="C3", label="body in the gas (concurrent DPD/MPM)")
+    for st, x, y in zip(held, p, v):
+        ax.annotate(st.name, (x, y), fontsize=7, xytext=(4, 4), textcoords="offset points")
+    ax.set_xlabel("pressure P (GPa)")
+    ax.set_ylabel("V / V$_0$")
+    ax.set_title("a body in a gas against the bulk isotherms (seed fig. 6.4)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return finish(fig, os.path.join(outdir, "volume_in_gas.png"))
+
+
 def plot_fit(stage, outdir):
     """fit_dpd_potential: the objective per evaluation, the fitted isotherm
     against its targets with residuals, and the elastic constants side by side."""
@@ -704,6 +736,7 @@ def main(argv):
         written += plot_profiles_together(finished, run_dir)
         written += plot_runs_together(finished, run_dir)
         written += plot_concurrent_snapshots(finished, run_dir)
+        written += plot_inclusion(finished, run_dir)
         for stage in finished:
             if stage.kind == "concurrent":
                 # Not a plot, but derived from the run's files as the plots are.

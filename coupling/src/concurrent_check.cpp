@@ -90,6 +90,20 @@ void check_interface(const config::StageCheck& c) {
   }
 }
 
+// The MPM points of a region need the continuum's material; a body all
+// DPD (in a gas, say) needs none.
+void check_continuum_given(const config::StageCheck& c) {
+  if (c.resolved["continuum"]) return;
+  const YAML::Node regions = c.resolved["regions"];
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    if (regions[i]["solver"].Scalar() != "mpm") continue;
+    c.validator.error(c.raw["regions"][i], fmt::format("{}.regions[{}]", c.path, i),
+                      fmt::format("region '{}' is MPM, and its points need a material: add "
+                                  "`continuum` (youngs_modulus, poisson_ratio)",
+                                  regions[i]["name"].Scalar()));
+  }
+}
+
 // A modulus given as a number far from any solid's is a unit slip: a bare
 // number is bar (metal units), so `98` meant as GPa is 1e4 times too soft.
 void check_continuum(const config::StageCheck& c) {
@@ -289,6 +303,7 @@ void check_concurrent_stage(const config::StageCheck& c) {
   check_regions(c);
   check_grid(c);
   check_interface(c);
+  check_continuum_given(c);
   check_continuum(c);
   check_grips(c);
   check_opening_off_grips(c);

@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "pbms/geometry/region_yaml.hpp"
+#include "pbms/units.hpp"
 
 namespace pbms::coupling {
 namespace {
@@ -18,6 +19,23 @@ InterfaceTreatment treatment(const std::string& name) {
   if (name == "none") return InterfaceTreatment::kNone;
   if (name == "momentum_conserving") return InterfaceTreatment::kMomentumConserving;
   return InterfaceTreatment::kSeed;
+}
+
+GasParams gas_from_yaml(const YAML::Node& g, const YAML::Node& box) {
+  GasParams gas;
+  gas.spacing = g["spacing"].as<double>();
+  const auto origin =
+      g["origin"] ? g["origin"].as<std::vector<double>>() : box["lo"].as<std::vector<double>>();
+  gas.origin = {origin[0], origin[1], origin[2]};
+  gas.density = g["density"].as<double>() / units::kGramPerCm3PerAmuPerA3;
+  gas.pressure = g["pressure"].as<double>();
+  gas.gamma = g["gamma"].as<double>();
+  gas.flip = g["flip"].as<double>();
+  gas.clearance = g["clearance"].as<double>(0.75 * gas.spacing);
+  gas.probe_distance = g["probe_distance"].as<double>();
+  gas.settle_time = g["settle_time"].as<double>();
+  gas.walls = g["walls"].as<bool>();
+  return gas;
 }
 
 }  // namespace
@@ -82,12 +100,12 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
     }
     c.held.push_back(h);
   }
-  if (p["continuum"]["lattice_constant"]) {
-    c.lattice_constant = p["continuum"]["lattice_constant"].as<double>();
+  if (const YAML::Node cont = p["continuum"]) {
+    if (cont["lattice_constant"]) c.lattice_constant = cont["lattice_constant"].as<double>();
+    c.youngs_modulus = cont["youngs_modulus"].as<double>();
+    c.poisson_ratio = cont["poisson_ratio"].as<double>();
+    c.ddmp = cont["gradient"].as<std::string>("plain") == "ddmp";
   }
-  c.youngs_modulus = p["continuum"]["youngs_modulus"].as<double>();
-  c.poisson_ratio = p["continuum"]["poisson_ratio"].as<double>();
-  c.ddmp = p["continuum"]["gradient"].as<std::string>("plain") == "ddmp";
   c.time_step = p["time_step"].as<double>();
   c.steps = p["steps"].as<std::int64_t>();
   c.sample_every = p["sample_every"].as<std::int64_t>();
@@ -110,6 +128,14 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
   if (const YAML::Node t = p["tension"]) {
     c.tension = TensionProbe{t["left_grip"].as<std::string>(), t["right_grip"].as<std::string>(),
                              axis_index(t["axis"].as<std::string>()), t["fit_strain"].as<double>()};
+  }
+  if (const YAML::Node g = p["gas"]) c.gas = gas_from_yaml(g, p["box"]);
+  if (const YAML::Node t = p["thermostat"]) {
+    c.thermostat = std::make_pair(t["temperature"].as<double>(), t["tau"].as<double>());
+  }
+  if (const YAML::Node v = p["volume"]) {
+    c.volume = VolumeProbe{v["group"].as<std::string>(), std::nullopt};
+    if (v["reference"]) c.volume->reference = v["reference"].as<double>();
   }
   return c;
 }

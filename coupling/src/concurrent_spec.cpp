@@ -117,6 +117,75 @@ Param wave() {
       "Wave speeds in each part and the interface opening");
 }
 
+// The pressure medium of the seed's chapter 6: ideal-gas MPM points of
+// mpm_driver filling the box around the DPD bodies, touching them only
+// through the grid nodes both map to.
+Param gas() {
+  return Param::map(
+      "gas",
+      {Param::real("spacing", Dimension::kLength,
+                   "Edge of the gas points' simple cubic lattice (the seed: a_cg)")
+           .require()
+           .above(0),
+       Param::real_list("origin", Dimension::kLength,
+                        "One site of the lattice; default the box's lower corner")
+           .length(3, 3),
+       Param::real("density", Dimension::kDensity,
+                   "The gas's mass density; each point weighs density x spacing³")
+           .require()
+           .above(0),
+       Param::real("pressure", Dimension::kPressure,
+                   "Target pressure: each point's internal energy is set so that "
+                   "(γ − 1) ρ e is this")
+           .require()
+           .at_least(0)
+           .referable(),
+       Param::real("gamma", Dimension::kNone, "Ratio of specific heats").def(1.4).above(1),
+       Param::real("clearance", Dimension::kLength,
+                   "Sites closer than this to a particle of the body are left empty; default "
+                   "0.75 spacing, which empties the sites on a body's surface planes")
+           .above(0),
+       Param::real("probe_distance", Dimension::kLength,
+                   "The gas pressure reached is the mean over the gas points at least this far "
+                   "from every particle of the body at the start (away from the solid)")
+           .def(15.0)
+           .at_least(0),
+       Param::real("settle_time", Dimension::kTime,
+                   "gas_pressure is the mean of the samples from this time on")
+           .def(0.0)
+           .at_least(0),
+       Param::real("flip", Dimension::kNone,
+                   "The gas points' own FLIP/PIC blend: at one point per cell an inviscid gas "
+                   "under FLIP alone grows velocity modes the grid cannot see; some PIC damps "
+                   "them (the body keeps grid.flip)")
+           .def(0.95)
+           .at_least(0)
+           .at_most(1),
+       Param::boolean("walls",
+                      "The box's non-periodic faces are walls: the grid nodes on "
+                      "them keep no normal velocity")
+           .def(true)},
+      "Ideal-gas MPM points (P = (γ − 1) ρ e, seed eq. 6.1) filling the box outside the body, "
+      "advanced by mpm_driver");
+}
+
+// How big a body is: its edges from its outermost lattice planes.
+Param volume() {
+  return Param::map(
+      "volume",
+      {Param::identifier("group", "The body (a group or body name) whose volume is measured")
+           .require()
+           .names_entry_of({"bodies", "groups"}),
+       Param::real("reference", Dimension::kNone,
+                   "V0 in Å³ (for instance another stage's body_volume); default the volume "
+                   "at the start")
+           .above(0)
+           .referable()},
+      "A block's volume as the product of its three edges, each the distance between the mean "
+      "positions of its two outermost lattice planes along that axis plus one plane spacing "
+      "(a/2); the planes' particles are chosen at the start");
+}
+
 }  // namespace
 
 config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
@@ -138,14 +207,26 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
                                     "region holding it (a region may nest in another, a core "
                                     "in a shell; others may touch but not overlap), particles "
                                     "in none stay DPD")
-                         .require());
+                         .def(std::vector<std::string>{}));
   s.params.push_back(
       Param::choice("interface", {"none", "seed", "momentum_conserving"},
                     "none: the grid alone joins the parts; seed: DPD particles take pair forces "
                     "from MPM points within the cutoff (s-15 to s-18); momentum_conserving: "
                     "and each acts back on its MPM point")
           .def(std::string("seed")));
-  s.params.push_back(continuum().require());
+  s.params.push_back(continuum());
+  s.params.push_back(gas());
+  s.params.push_back(Param::map(
+      "thermostat",
+      {Param::real("temperature", Dimension::kTemperature, "Target temperature of the DPD part")
+           .require()
+           .above(0),
+       Param::real("tau", Dimension::kTime, "Coupling time").def(0.5).above(0)},
+      "Berendsen rescaling of the DPD part's free particles about their mean velocity after "
+      "each step (momentum kept). The grid step drains their thermal motion into the grid "
+      "(and into a gas sharing its nodes) far faster than the pair thermostat (gamma) gives "
+      "it back; this holds the body at its temperature"));
+  s.params.push_back(volume());
   s.params.push_back(wave());
   s.params.push_back(Param::map(
       "tension",
@@ -169,7 +250,24 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
                          .at_least(0));
   s.outputs = {
       {"dpd_particles", OutputSpec::Shape::kScalar, "1", "DPD particles"},
-      {"mpm_points", OutputSpec::Shape::kScalar, "1", "MPM points"},
+      {"mpm_points", OutputSpec::Shape::kScalar, "1", "MPM points of the body"},
+      {"gas_points", OutputSpec::Shape::kScalar, "1", "Gas points (gas)"},
+      {"gas_pressure", OutputSpec::Shape::kScalar, "GPa",
+       "Mean pressure of the gas points away from the body, over the samples from "
+       "gas.settle_time on (gas)"},
+      {"gas_pressure_target", OutputSpec::Shape::kScalar, "GPa", "gas.pressure (gas)"},
+      {"gas_pressure_error", OutputSpec::Shape::kScalar, "1",
+       "gas_pressure over its target, minus one (gas)"},
+      {"gas_pressure_series", OutputSpec::Shape::kTable, "",
+       "Each sample: the gas pressure away from the body and over every gas point (gas)"},
+      {"wall_impulse", OutputSpec::Shape::kScalar, "g/mol*Å/ps",
+       "Magnitude of the momentum the walls took from the gas over the run (gas)"},
+      {"body_volume", OutputSpec::Shape::kScalar, "Å^3",
+       "The volume.group's block volume, mean over the last half of the samples (volume)"},
+      {"body_edges", OutputSpec::Shape::kTable, "",
+       "Each sample: the block's three edges and its volume (volume)"},
+      {"volume_ratio", OutputSpec::Shape::kScalar, "1",
+       "body_volume over volume.reference, or over the volume at the start (volume)"},
       {"dpd_temperature", OutputSpec::Shape::kScalar, "K", "Kinetic temperature of the DPD part"},
       {"momentum_change", OutputSpec::Shape::kScalar, "1",
        "Largest change of the total momentum over the run, over M c (M the body's mass, c its "

@@ -12,8 +12,8 @@
 
 namespace pbms::coupling {
 
-ConservationLedger::ConservationLedger(MPI_Comm comm, std::vector<std::string> energies)
-    : comm_(comm), names_(std::move(energies)), energies_(names_.size()) {}
+ConservationLedger::ConservationLedger(MPI_Comm comm, std::vector<std::string> energies, bool walls)
+    : comm_(comm), names_(std::move(energies)), walls_(walls), energies_(names_.size()) {}
 
 ConservationLedger::Row ConservationLedger::motion_of(double time, const ParticleView& now) const {
   Row r;
@@ -39,9 +39,12 @@ void ConservationLedger::add(Row mine) {
   std::vector<double> sums{mine.mass, mine.momentum[0], mine.momentum[1], mine.momentum[2],
                            mine.kinetic};
   sums.insert(sums.end(), mine.energies.begin(), mine.energies.end());
+  sums.insert(sums.end(), mine.wall_impulse.begin(), mine.wall_impulse.end());
   mpi::check(MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_DOUBLE,
                            MPI_SUM, comm_),
              "MPI_Allreduce (conservation ledger)");
+  const std::size_t walls_at = 5 + names_.size();
+  for (std::size_t a = 0; a < 3 && walls_; ++a) wall_impulse_[a].push_back(sums[walls_at + a]);
   time_.push_back(mine.time);
   mass_.push_back(sums[0]);
   for (std::size_t a = 0; a < 3; ++a) momentum_[a].push_back(sums[1 + a]);
@@ -51,7 +54,11 @@ void ConservationLedger::add(Row mine) {
 
 double ConservationLedger::momentum_drift(MPI_Comm inter) const {
   std::vector<double> mine;
-  for (const auto& column : momentum_) mine.insert(mine.end(), column.begin(), column.end());
+  for (std::size_t a = 0; a < 3; ++a) {
+    for (std::size_t k = 0; k < rows(); ++k) {
+      mine.push_back(momentum_[a][k] - (walls_ ? wall_impulse_[a][k] : 0.0));
+    }
+  }
   std::vector<double> theirs(mine.size());
   swap_values(inter, comm_, mine, theirs);
   const std::size_t n = rows();
@@ -75,6 +82,11 @@ void ConservationLedger::report(StageResults& r, const std::string& prefix) cons
   r.add_column(table, "kinetic_energy", "eV", kinetic_);
   for (std::size_t k = 0; k < names_.size(); ++k)
     r.add_column(table, names_[k], "eV", energies_[k]);
+  if (walls_) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      r.add_column(table, fmt::format("wall_impulse_{}", "xyz"[a]), "g/mol*Å/ps", wall_impulse_[a]);
+    }
+  }
 }
 
 void ConservationLedger::save(CheckpointArchive& a, const Row* pending) const {
@@ -83,6 +95,9 @@ void ConservationLedger::save(CheckpointArchive& a, const Row* pending) const {
   a.put("ledger/kinetic", kinetic_);
   for (std::size_t c = 0; c < 3; ++c) a.put(fmt::format("ledger/momentum_{}", c), momentum_[c]);
   for (std::size_t k = 0; k < names_.size(); ++k) a.put("ledger/" + names_[k], energies_[k]);
+  for (std::size_t c = 0; c < 3 && walls_; ++c) {
+    a.put(fmt::format("ledger/wall_impulse_{}", c), wall_impulse_[c]);
+  }
   if (pending == nullptr) return;
   std::vector<double> row{pending->mass, pending->momentum[0], pending->momentum[1],
                           pending->momentum[2], pending->kinetic};
@@ -100,6 +115,9 @@ ConservationLedger::Row ConservationLedger::load(const CheckpointArchive& a) {
   kinetic_ = a.get("ledger/kinetic");
   for (std::size_t c = 0; c < 3; ++c) momentum_[c] = a.get(fmt::format("ledger/momentum_{}", c));
   for (std::size_t k = 0; k < names_.size(); ++k) energies_[k] = a.get("ledger/" + names_[k]);
+  for (std::size_t c = 0; c < 3 && walls_; ++c) {
+    wall_impulse_[c] = a.get(fmt::format("ledger/wall_impulse_{}", c));
+  }
   Row pending;
   pending.time = std::nan("");
   if (!a.has("ledger/pending")) return pending;

@@ -332,16 +332,24 @@ void DpdEngine::sweep_pairs() {
   splitting_sweep(particles_, *sweep_order_, settings_, step_, hand_back);
 }
 
-void DpdEngine::berendsen(double temperature, double tau) {
+void DpdEngine::berendsen(double temperature, double tau, bool about_mean) {
   if (!(tau > 0.0)) throw Error("Berendsen thermostat: tau must be > 0 ps");
-  double sums[2] = {0.0, 0.0};  // Σ m v², free particles
+  double sums[6] = {};  // Σ m v², free particles, Σ m, Σ m v
   for (std::size_t i = 0; i < owned_; ++i) {
     if ((particles_.group_mask[i] & prescribed_) != 0) continue;
     const Vec3& v = particles_.v[i];
-    sums[0] += particles_.mass(i) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double m = particles_.mass(i);
+    sums[0] += m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     sums[1] += 1.0;
+    sums[2] += m;
+    for (std::size_t a = 0; a < 3; ++a) sums[3 + a] += m * v[a];
   }
-  allreduce_sum(comm(), sums, 2);
+  allreduce_sum(comm(), sums, 6);
+  Vec3 mean{0.0, 0.0, 0.0};
+  if (about_mean && sums[2] > 0.0) {
+    for (std::size_t a = 0; a < 3; ++a) mean[a] = sums[3 + a] / sums[2];
+    sums[0] -= sums[2] * (mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]);
+  }
   const double dof = 3.0 * sums[1] - 3.0;
   const double current = dof > 0.0 ? sums[0] * units::kMvv2e / (dof * units::kBoltzmann) : 0.0;
   if (!(current > 0.0)) {
@@ -350,7 +358,9 @@ void DpdEngine::berendsen(double temperature, double tau) {
   const double lambda = std::sqrt(1.0 + settings_.dt / tau * (temperature / current - 1.0));
   for (std::size_t i = 0; i < owned_; ++i) {
     if ((particles_.group_mask[i] & prescribed_) != 0) continue;
-    for (double& c : particles_.v[i]) c *= lambda;
+    for (std::size_t a = 0; a < 3; ++a) {
+      particles_.v[i][a] = mean[a] + lambda * (particles_.v[i][a] - mean[a]);
+    }
   }
 }
 

@@ -122,7 +122,9 @@ class DpdEngine {
   // parts for velocity Verlet, from the current velocities).
   PairResult compute_forces(Tally tally = Tally::kForcesOnly);
   // Scales the free particles' velocities towards T over tau (Berendsen).
-  void berendsen(double temperature, double tau);
+  // With `about_mean` the free particles' velocities are scaled about their
+  // mean, which keeps their momentum (a thermostat inside a coupled run).
+  void berendsen(double temperature, double tau, bool about_mean = false);
 
   // What a checkpoint holds of the engine: each rank's owned particles in
   // the order it stores them, as rows of kStateWidth (id, type, groups, x,

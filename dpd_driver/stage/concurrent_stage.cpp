@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "block_volume_probe.hpp"
 #include "dpd_model.hpp"
 #include "dpd_part_of_body.hpp"
 #include "dpd_run.hpp"
@@ -233,6 +234,10 @@ class DpdPartSampler {
                  coupling::ConcurrentProbes& probes)
       : comm_(comm), inter_(inter), part_(part), cp_(part.params()), view_(view), probes_(probes) {
     if (cp_.tension) tension_.emplace(*cp_.tension, part);
+    if (cp_.volume) {
+      volume_.emplace(comm, *cp_.volume, part.group_mask(cp_.volume->group),
+                      cp_.material_lattice_constant, view.view(part.engine()));
+    }
   }
 
   // Collective over both programs.
@@ -241,6 +246,7 @@ class DpdPartSampler {
     const auto v = view_.view(engine);
     probes_.sample(n, v);
     if (tension_) sample_tension(n);
+    if (volume_) volume_->sample(static_cast<double>(n) * cp_.time_step, v);
     if (cp_.opening) {
       const auto mine = probes_.opening_moments(v);
       opening_t_.push_back(static_cast<double>(n) * cp_.time_step);
@@ -251,17 +257,20 @@ class DpdPartSampler {
 
   void report(StageResults& r) const {
     if (cp_.opening && !opening_.empty()) report_opening(r, opening_t_, opening_);
+    if (volume_) volume_->report(r);
   }
   void report_tension(StageResults& r) const {
     if (tension_) tension_->report(r);
   }
   void save(CheckpointArchive& a) const {
     if (tension_) tension_->save(a);
+    if (volume_) volume_->save(a);
     a.put("opening/time", opening_t_);
     a.put("opening/value", opening_);
   }
   void load(const CheckpointArchive& a) {
     if (tension_) tension_->load(a);
+    if (volume_) volume_->load(a);
     opening_t_ = a.get("opening/time");
     opening_ = a.get("opening/value");
   }
@@ -286,6 +295,7 @@ class DpdPartSampler {
   DpdView& view_;
   coupling::ConcurrentProbes& probes_;
   std::optional<TensionSeries> tension_;
+  std::optional<BlockVolumeProbe> volume_;
   std::vector<double> opening_t_, opening_;
 };
 
@@ -295,12 +305,18 @@ double body_mass(MPI_Comm comm, MPI_Comm inter, DpdPartOfBody& part) {
   return coupling::swap_scalar(inter, comm, mine) + mine;
 }
 
-// The bar speed c = sqrt(E / rho) of the MPM points' material, Å/ps (bar
-// Å³/(g/mol) to Å²/ps²): momentum changes are reported over M c.
+// The speed momentum changes are reported against (M c), Å/ps (bar
+// Å³/(g/mol) to Å²/ps²): the bar speed sqrt(E / rho) of the MPM points'
+// material, or without one the gas's sound speed sqrt(gamma P / rho).
 double bar_speed(const coupling::ConcurrentParams& cp) {
   const double a = cp.point_lattice_constant();
   const double rho = 4.0 * cp.particle_mass / (a * a * a);
-  return std::sqrt(cp.youngs_modulus / rho / units::kBarPerEvPerA3 / units::kMvv2e);
+  constexpr double kToA2PerPs2 = 1.0 / units::kBarPerEvPerA3 / units::kMvv2e;
+  if (cp.youngs_modulus > 0.0) return std::sqrt(cp.youngs_modulus / rho * kToA2PerPs2);
+  if (cp.gas && cp.gas->pressure > 0.0) {
+    return std::sqrt(cp.gas->gamma * cp.gas->pressure / cp.gas->density * kToA2PerPs2);
+  }
+  return 1.0;
 }
 
 // Bytes the DPD part's ranks sent in the nodal sums and received as
@@ -403,6 +419,7 @@ void ConcurrentStage::run(StageContext& ctx) {
     set_current_step(n);
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kDpd));
+    if (cp.thermostat) engine.berendsen(cp.thermostat->first, cp.thermostat->second, true);
     ledger.energies(engine);
     const auto now = view.view(engine);
     const double t = static_cast<double>(n) * cp.time_step;

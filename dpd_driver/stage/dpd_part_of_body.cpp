@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "kernels/periodic_wrap.hpp"
+#include "pbms/coupling/gas_lattice.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -31,6 +32,27 @@ SplitBody split_body(const DpdParticles& all, const ConcurrentParams& cp) {
     s.dpd.group_mask.back() = all.group_mask[i];
   }
   return s;
+}
+
+// The gas around the body (gas_sites), after the body's own points, its
+// ids after the body's, at rest.
+void add_gas(SplitBody& body, const ConcurrentParams& cp, const geometry::Box& box) {
+  const coupling::GasParams& gas = *cp.gas;
+  std::vector<Vec3> solid = body.dpd.x;
+  std::int64_t next_id = 0;
+  for (const auto id : body.dpd.id) next_id = std::max(next_id, id + 1);
+  for (const auto& p : body.mpm) {
+    solid.push_back(p.x);
+    next_id = std::max(next_id, p.id + 1);
+  }
+  const std::vector<Vec3> sites = coupling::gas_sites(gas, box, cp.periodic, solid);
+  const std::vector<bool> near = coupling::near_body(sites, solid, gas.probe_distance);
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    coupling::HandedPoint p{next_id++, sites[s], {0.0, 0.0, 0.0}, gas.point_mass(), 0};
+    p.kind = static_cast<std::uint32_t>(near[s] ? coupling::HandedKind::kGas
+                                                : coupling::HandedKind::kGasAway);
+    body.mpm.push_back(p);
+  }
 }
 
 // The cells a set of positions touches, grown by `margin`, as nodes.
@@ -104,12 +126,16 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
   for (std::size_t a = 0; a < 3; ++a) extent_[a] = extent_along(model_.particles, a, plane);
   SplitBody body = split_body(model_.particles, cp_);
   model_.particles = DpdParticles{};  // now in `body`
+  mpm_count_ = static_cast<double>(body.mpm.size());
+  if (cp_.gas) {
+    add_gas(body, cp_, {model_.box.lo, model_.box.hi});
+    gas_count_ = static_cast<double>(body.mpm.size()) - mpm_count_;
+  }
   // Partners within the list's reach, chosen afresh when either side has
   // moved half the skin.
   reach_ = std::max(model_.pair->cutoff(), model_.settings.friction.cutoff) + model_.settings.skin;
   band_ = interface_band(body, cp_, reach_);
   dpd_count_ = static_cast<double>(body.dpd.size());
-  mpm_count_ = static_cast<double>(body.mpm.size());
   handover_ = {model_.group_names,   band_.lo,           band_.hi, reach_,
                model_.settings.skin, std::move(body.mpm)};
   engine_ = std::make_unique<DpdEngine>(comm, model_.box, std::move(model_.pair), model_.settings,

@@ -373,6 +373,29 @@ void MpmSolver::apply_node_constraints(const BoundaryConditions& bc, std::vector
   }
 }
 
+// The momentum the constraints are about to give the nodes (each node
+// counted on one rank only): sum of m (v_held - v) over the held axes, which
+// both PIC and FLIP hand on to the points whole.
+Vec3 MpmSolver::node_constraint_impulse(const BoundaryConditions& bc) const {
+  Vec3 impulse{0.0, 0.0, 0.0};
+  for (const auto& c : bc.nodes) {
+    const auto box = c.nodes.intersected(patch_.nodes);
+    for (int k = box.lo[2]; k < box.hi[2]; ++k) {
+      for (int j = box.lo[1]; j < box.hi[1]; ++j) {
+        for (int i = box.lo[0]; i < box.hi[0]; ++i) {
+          const auto li = static_cast<size_t>(patch_.nodes.local_index({i, j, k}));
+          const double mass = sums_[li].lanes[sums::kMass];
+          if (!unique_node_[li] || !(mass > mass_floor_)) continue;
+          for (size_t a = 0; a < 3; ++a) {
+            if (c.axis[a]) impulse[a] += mass * (c.velocity[a] - velocity_[li][a]);
+          }
+        }
+      }
+    }
+  }
+  return impulse;
+}
+
 void MpmSolver::nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const {
   for (size_t i = 0; i < sums_.size(); ++i) {
     const Lanes8& r = sums_[i].lanes;
@@ -883,6 +906,7 @@ void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
       velocity_[i] = acceleration_[i] = {0.0, 0.0, 0.0};
     }
   }
+  constraint_impulse_ = node_constraint_impulse(bc);
   apply_node_constraints(bc, velocity_, true);
   hold_rigid_nodes(bc, dt);
   for (size_t i = 0; i < sums_.size(); ++i) {
@@ -992,10 +1016,52 @@ void MpmSolver::hold_nodes_of_others(const double* records, double dt) {
 // point momenta with this step's shape functions (s-10) in the same pass.
 void MpmSolver::map_to_points(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
   enter(Phase::kMapToPoints);
+  if (!opt_.material_flip.empty()) {
+    with_eval([&](const auto& eval) { relax_to_own_field(eval, points); });
+  }
   pack_kinematics(acceleration_, velocity_);
   const Lanes8 keep_all_but_momentum = {1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
   for (auto& r : sums_) r.lanes *= keep_all_but_momentum;
   with_eval([&](const auto& eval) { grid_to_points(eval, points, bc, dt); });
+}
+
+// A material of blend f < 1 (SolverOptions::material_flip) has each point's
+// velocity moved (1 - f) of the way to its own material's nodal field there,
+// sum_i N_i (sum_q N_iq m_q v_q / sum_q N_iq m_q) over that material's points
+// q, before the grid's update reaches it. The PIC part of a FLIP/PIC blend
+// would use every material's field, which at a node shared with another
+// material moves momentum between them; this one keeps each material's
+// momentum exactly (the N_i sum to one) and still damps the point velocities
+// the grid does not see.
+template <class Eval>
+void MpmSolver::relax_to_own_field(const Eval& eval, MaterialPoints& points) {
+  const size_t n = points.size();
+  std::vector<double> field(4 * sums_.size(), 0.0);  // per node: m, m v
+  const auto relaxed = [&](size_t p) { return opt_.flip_of(points.material[p]) < 1.0; };
+  for (size_t p = 0; p < n; ++p) {
+    if (!relaxed(p)) continue;
+    const auto& s = locate(eval, points, p);
+    for (int q = 0; q < s.count; ++q) {
+      double* f = &field[4 * static_cast<size_t>(s.node[static_cast<size_t>(q)])];
+      const double w = s.N[static_cast<size_t>(q)] * points.mass[p];
+      f[0] += w;
+      for (size_t a = 0; a < 3; ++a) f[1 + a] += w * points.v[p][a];
+    }
+  }
+  if (patch_.sum_shared) patch_.sum_shared(field.data(), 4, 4);
+  for (size_t p = 0; p < n; ++p) {
+    if (!relaxed(p)) continue;
+    const auto& s = locate(eval, points, p);
+    Vec3 own{0.0, 0.0, 0.0};
+    for (int q = 0; q < s.count; ++q) {
+      const double* f = &field[4 * static_cast<size_t>(s.node[static_cast<size_t>(q)])];
+      if (!(f[0] > 0.0)) continue;
+      const double w = s.N[static_cast<size_t>(q)] / f[0];
+      for (size_t a = 0; a < 3; ++a) own[a] += w * f[1 + a];
+    }
+    const double keep = opt_.flip_of(points.material[p]);
+    for (size_t a = 0; a < 3; ++a) points.v[p][a] += (1.0 - keep) * (own[a] - points.v[p][a]);
+  }
 }
 
 template <class Eval>

@@ -5,8 +5,9 @@
 
 namespace pbms::mpm {
 
-ConcurrentMpmSide::ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin)
-    : engine_(engine), dt_(dt), skin_(partner_skin) {}
+ConcurrentMpmSide::ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin,
+                                     int gas_material)
+    : engine_(engine), dt_(dt), skin_(partner_skin), gas_(gas_material) {}
 
 bool ConcurrentMpmSide::follow_points() {
   const grid::MaterialPoints& p = engine_.points();
@@ -34,7 +35,9 @@ bool ConcurrentMpmSide::follow_points() {
 bool ConcurrentMpmSide::wants_new_partners() {
   int renew = follow_points() && !changed_ ? 0 : 1;
   const double half_skin_squared = 0.25 * skin_ * skin_;
+  const auto& material = engine_.points().material;
   for (std::size_t i = 0; i < unwrapped_.size() && renew == 0; ++i) {
+    if (material[i] == gas_) continue;  // no partner
     double d2 = 0.0;
     for (std::size_t a = 0; a < 3; ++a) {
       const double d = unwrapped_[i][a] - chosen_at_[i][a];
@@ -91,9 +94,25 @@ void ConcurrentMpmSide::finish_step() {
   if (engine_.points().id != ids_) changed_ = true;
 }
 
+void ConcurrentMpmSide::choose_partner_points() const {
+  const grid::MaterialPoints& p = engine_.points();
+  PartnerCopy& c = partner_;
+  c = PartnerCopy{};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.material[i] == gas_) continue;
+    c.index.push_back(i);
+    c.id.push_back(p.id[i]);
+    c.x.push_back(unwrapped_[i]);
+    c.v.push_back(p.v[i]);
+    c.mass.push_back(p.mass[i]);
+  }
+}
+
 coupling::ContinuumSide::Points ConcurrentMpmSide::partner_points() const {
   const grid::MaterialPoints& p = engine_.points();
-  return {p.id, unwrapped_, p.v, p.mass};
+  if (gas_ < 0) return {p.id, unwrapped_, p.v, p.mass};
+  choose_partner_points();
+  return {partner_.id, partner_.x, partner_.v, partner_.mass};
 }
 
 // The space of this rank's cells, which hold its points after every
@@ -116,7 +135,13 @@ coupling::SpaceBox ConcurrentMpmSide::points_box() const {
 }
 
 void ConcurrentMpmSide::take_reactions(std::vector<coupling::Vec3> force) {
-  reactions_ = std::move(force);
+  if (gas_ < 0) {
+    reactions_ = std::move(force);
+  } else {
+    // partner_ still lists this step's partner points (the same order).
+    reactions_.assign(engine_.points().size(), {0.0, 0.0, 0.0});
+    for (std::size_t k = 0; k < force.size(); ++k) reactions_[partner_.index[k]] = force[k];
+  }
   engine_.boundary_conditions().point_forces = reactions_;
 }
 

@@ -15,7 +15,9 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   // The engine must outlive the side. The partners are chosen afresh once
   // a point has moved more than half `partner_skin` (the DPD list's skin)
   // since they were, or points changed rank; 0 chooses them every step.
-  ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin = 0.0);
+  // Points of material `gas_material` (the gas around the body; -1: none)
+  // are no pair partners: the gas meets the body through the grid alone.
+  ConcurrentMpmSide(MpmEngine& engine, double dt, double partner_skin = 0.0, int gas_material = -1);
 
   void compute_forces() override {}
   void map_to_grid() override;
@@ -44,9 +46,21 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   // periodic faces. Returns false when the points changed (a migration).
   bool follow_points();
 
+  // Without gas, every point; with gas, the body's points (partner_ lists
+  // their indices and holds copies of their fields).
+  void choose_partner_points() const;
+
   MpmEngine& engine_;
   double dt_;
   double skin_;
+  int gas_;
+  struct PartnerCopy {
+    std::vector<std::size_t> index;
+    std::vector<std::int64_t> id;
+    std::vector<grid::Vec3> x, v;
+    std::vector<double> mass;
+  };
+  mutable PartnerCopy partner_;
   std::vector<grid::Vec3> reactions_;
   coupling::HeldNodeSwap holds_;
   std::vector<std::int64_t> ids_;               // the points as last followed

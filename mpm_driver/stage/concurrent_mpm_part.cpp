@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include "engine_checkpoint.hpp"
+#include "gas_probe.hpp"
 #include "mpm_part_of_body.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
@@ -148,11 +150,20 @@ class MpmPartOutput {
   std::unique_ptr<H5mdWriter> points_;
 };
 
+// The gas's points over the part's ranks.
+std::int64_t count_gas_points(MPI_Comm comm, const MpmEngine& engine, int gas_material) {
+  const auto& m = engine.points().material;
+  std::int64_t n = std::count(m.begin(), m.end(), gas_material);
+  MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT64_T, MPI_SUM, comm);
+  return n;
+}
+
 // A ledger row of the MPM part at step n: its motion and its stored and
 // dissipated energy.
 void add_to_ledger(coupling::ConservationLedger& ledger, const MpmEngine& engine, std::int64_t n,
-                   double dt) {
+                   double dt, const GasProbe* gas) {
   auto row = ledger.motion_of(static_cast<double>(n) * dt, view_of(engine.points()));
+  if (gas != nullptr) row.wall_impulse = gas->wall_impulse();
   const grid::EnergySummary energy = engine.solver().energy(engine.points());
   row.energies = {energy.stored, energy.dissipated};
   ledger.add(std::move(row));
@@ -165,6 +176,7 @@ struct MpmPartCheckpoint {
   MpmEngine& engine;
   coupling::ConcurrentProbes& probes;
   coupling::ConservationLedger& ledger;
+  GasProbe* gas;
 
   // Collective over the part's ranks.
   [[nodiscard]] CheckpointArchive save() const {
@@ -172,6 +184,7 @@ struct MpmPartCheckpoint {
     put_engine_state(a, engine);
     probes.save(a);
     ledger.save(a);
+    if (gas != nullptr) gas->save(a);
     return a;
   }
   // Returns the step the archive was written after.
@@ -179,6 +192,7 @@ struct MpmPartCheckpoint {
     const std::int64_t step = take_engine_state(a, engine);
     probes.load(a);
     (void)ledger.load(a);  // this part adds its rows as it goes: none pending
+    if (gas != nullptr) gas->load(a);
     return step;
   }
 };
@@ -212,16 +226,26 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
 
   coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),
                                     0.5 * part.lattice_constant(), view_of(engine.points()));
-  const double mass = static_cast<double>(engine.total_points()) * cp.particle_mass;
+  // The part's mass (the gas's included: the momentum is everything's).
+  const auto& masses = engine.points().mass;
+  double mass = std::accumulate(masses.begin(), masses.end(), 0.0);
+  MPI_Allreduce(MPI_IN_PLACE, &mass, 1, MPI_DOUBLE, MPI_SUM, ctx.comm());
   (void)coupling::swap_scalar(inter, ctx.comm(), mass);
-  coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"});
+  coupling::ConservationLedger ledger(ctx.comm(), {"stored_energy", "dissipated_energy"},
+                                      cp.gas && cp.gas->walls);
+  std::optional<GasProbe> gas;
+  if (cp.gas) {
+    gas.emplace(ctx.comm(), *cp.gas, part.gas_material(),
+                engine.model().group_mask(MpmPartOfBody::kGasAwayGroup));
+  }
+  GasProbe* gas_probe = gas ? &*gas : nullptr;
   MpmPartSampler sampler(ctx.comm(), inter, cp, engine, probes);
   // The checkpoints dpd_driver's part writes, at the same steps (a step
   // after one chooses the partners afresh, as a resumed run's first does).
   StageCheckpoints checkpoints(ctx);
   checkpoints.run_as_part(
       "mpm", [&](bool mine) { return coupling::either_program(inter, ctx.comm(), mine); });
-  MpmPartCheckpoint state{engine, probes, ledger};
+  MpmPartCheckpoint state{engine, probes, ledger, gas_probe};
   std::unique_ptr<MpmPartOutput> output;
   std::int64_t first_step = 1;
   if (checkpoints.enabled() && checkpoints.resuming()) {
@@ -234,8 +258,9 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
       output = std::make_unique<MpmPartOutput>(ctx, cp, engine, std::nullopt);
     }
     probes.track(0, view_of(engine.points()));
-    add_to_ledger(ledger, engine, 0, cp.time_step);
+    add_to_ledger(ledger, engine, 0, cp.time_step, gas_probe);
     sampler.sample(0);
+    if (gas) gas->sample(0.0, engine);
   }
   const auto started = std::chrono::steady_clock::now();
   for (std::int64_t n = first_step; n <= cp.steps; ++n) {
@@ -243,9 +268,13 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kMpm));
     probes.track(n, view_of(engine.points()));
-    add_to_ledger(ledger, engine, n, cp.time_step);
-    if (n % cp.sample_every == 0 || n == cp.steps) sampler.sample(n);
     const double t = static_cast<double>(n) * cp.time_step;
+    if (gas) gas->after_step(engine);
+    add_to_ledger(ledger, engine, n, cp.time_step, gas_probe);
+    if (n % cp.sample_every == 0 || n == cp.steps) {
+      sampler.sample(n);
+      if (gas) gas->sample(t, engine);
+    }
     if (output && (n % cp.particles_every == 0 || n == cp.steps)) output->write(engine, n, t);
     const bool stop = checkpoints.stop_agreed(n) && n < cp.steps;
     if (stop || checkpoints.due(n, cp.steps)) {
@@ -267,6 +296,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   if (output) MpmPartOutput::list_files(r, ctx.stage());
   probes.report(r, "mpm");
   ledger.report(r, "mpm");
+  if (gas) gas->report(r, count_gas_points(ctx.comm(), engine, part.gas_material()));
   // With no point of its own (a body all DPD) this part only answered
   // dpd_driver's exchanges; figures for it would describe nothing.
   if (engine.total_points() > 0) {

@@ -2,16 +2,48 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "materials/ideal_gas.hpp"
 #include "materials/linear_elastic.hpp"
+#include "pbms/error.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::mpm {
 namespace {
 
-// The handed-over points on the shared grid. Rigid and frozen groups with
-// points here are held at their velocity, as an MPM grip is.
-MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::BodyHandover& body,
-                  double volume) {
+// The names of the part's materials, in the order of their indices.
+constexpr const char* kContinuum = "continuum";
+constexpr const char* kGas = "gas";
+
+// The non-periodic faces of the grid, which hold the gas in: their nodes
+// keep no velocity normal to them. Only mpm_driver holds them, so the nodes
+// both programs share (the band) must stay off them.
+void add_walls(MpmModel& m, const grid::NodeBox& band) {
+  const grid::NodeBox all = m.grid.node_box();
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (m.periodic[a]) continue;
+    if (!band.empty() && (band.lo[a] <= all.lo[a] || band.hi[a] >= all.hi[a])) {
+      throw Error(
+          fmt::format("gas: the body comes within the interface band's reach of the walls along {} "
+                      "(band nodes {}..{} of {}): give the gas more room or lower grid.band_margin",
+                      "xyz"[a], band.lo[a], band.hi[a] - 1, all.hi[a] - 1));
+    }
+    for (const int plane : {all.lo[a], all.hi[a] - 1}) {
+      grid::NodeConstraint wall;
+      wall.nodes = all;
+      wall.nodes.lo[a] = plane;
+      wall.nodes.hi[a] = plane + 1;
+      wall.axis[a] = true;
+      m.bc.nodes.push_back(wall);
+    }
+  }
+}
+
+}  // namespace
+
+MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
+                                 const coupling::BodyHandover& body) const {
   MpmModel m;
   m.grid = cp.grid;
   m.periodic = cp.periodic;
@@ -23,10 +55,30 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::BodyHand
   m.options.ddmp = cp.ddmp;
   m.options.ddmp_face_vanishing = cp.ddmp;
   m.group_names = body.groups;
+  if (cp.gas) {
+    m.group_names.emplace_back(kGasAwayGroup);
+    m.options.material_flip.assign(static_cast<std::size_t>(gas_) + 1, 1.0);
+    m.options.material_flip[static_cast<std::size_t>(gas_)] = cp.gas->flip;
+  }
+  const double a = lattice_constant_;
+  const double site_volume = a * a * a / 4.0;  // one fcc site
   for (const auto& p : body.points) {
     grid::MaterialPointState s;
-    s.density = p.mass / volume;
-    m.points.add(p.id, p.x, volume, s, 0, p.groups);
+    double volume = site_volume;
+    int material = continuum_;
+    std::uint32_t groups = p.groups;
+    if (p.is_gas()) {
+      volume = cp.gas->point_volume();
+      material = gas_;
+      s = gas_model_->initial_state(p.mass / volume, cp.gas->pressure);
+      if (p.kind == static_cast<std::uint32_t>(coupling::HandedKind::kGasAway)) {
+        groups |= m.group_mask(kGasAwayGroup);
+      }
+    } else {
+      if (continuum_ < 0) throw Error("the MPM part was handed a body site but has no continuum");
+      s.density = p.mass / volume;
+    }
+    m.points.add(p.id, p.x, volume, s, material, groups);
     m.points.v.back() = p.v;
     m.points.mass.back() = p.mass;
   }
@@ -38,10 +90,9 @@ MpmModel model_of(const coupling::ConcurrentParams& cp, const coupling::BodyHand
     m.bc.point_velocities.push_back(pv);
     m.point_velocity_ramps.push_back({h.ramp_time, h.velocity});
   }
+  if (cp.gas && cp.gas->walls) add_walls(m, band_);
   return m;
 }
-
-}  // namespace
 
 MpmPartOfBody::MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp,
                              const coupling::BodyHandover& body) {
@@ -50,13 +101,24 @@ MpmPartOfBody::MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp
   reach_ = body.reach;
   lattice_constant_ = cp.point_lattice_constant();
   const double a = lattice_constant_;
-  const double volume = a * a * a / 4.0;  // one fcc site
   MaterialSet materials;
-  materials.models.push_back(std::make_unique<LinearElastic>(cp.youngs_modulus, cp.poisson_ratio));
-  materials.names.push_back("continuum");
-  materials.density.push_back(cp.particle_mass / volume);
-  engine_ = std::make_unique<MpmEngine>(comm, model_of(cp, body, volume), std::move(materials));
-  side_ = std::make_unique<ConcurrentMpmSide>(*engine_, cp.time_step, body.skin);
+  if (cp.youngs_modulus > 0.0) {
+    continuum_ = static_cast<int>(materials.models.size());
+    materials.models.push_back(
+        std::make_unique<LinearElastic>(cp.youngs_modulus, cp.poisson_ratio));
+    materials.names.emplace_back(kContinuum);
+    materials.density.push_back(4.0 * cp.particle_mass / (a * a * a));
+  }
+  if (cp.gas) {
+    gas_ = static_cast<int>(materials.models.size());
+    auto gas = std::make_unique<IdealGas>(cp.gas->gamma);
+    gas_model_ = gas.get();
+    materials.models.push_back(std::move(gas));
+    materials.names.emplace_back(kGas);
+    materials.density.push_back(cp.gas->density);
+  }
+  engine_ = std::make_unique<MpmEngine>(comm, model_of(cp, body), std::move(materials));
+  side_ = std::make_unique<ConcurrentMpmSide>(*engine_, cp.time_step, body.skin, gas_);
   time_step_ = cp.time_step;
 }
 

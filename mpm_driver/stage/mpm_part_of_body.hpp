@@ -1,6 +1,8 @@
 // The MPM part of a concurrent stage's body on the ranks of `comm`: the
 // points the DPD part handed over (coupling::BodyHandover), as linear elastic
-// material points on the shared grid, and their coupling side. mpm_driver's
+// material points on the shared grid, and the gas around the body when the
+// stage has one (ideal-gas points, the box's faces walls), with their
+// coupling side. mpm_driver's
 // concurrent_mpm_part builds it on its ranks; the monolithic reference of
 // the split test (tests/tools/concurrent_monolithic.cpp) builds it on one
 // process beside the DPD part.
@@ -37,11 +39,24 @@ class MpmPartOfBody {
   // step's velocity.
   void ramp_grips(std::int64_t step);
 
+  // The gas's material index, -1 without gas; the group of the gas points
+  // away from the body (gas.probe_distance), where its pressure is measured.
+  [[nodiscard]] int gas_material() const { return gas_; }
+  static constexpr const char* kGasAwayGroup = "gas_away_from_body";
+
   [[nodiscard]] MpmEngine& engine() { return *engine_; }
   [[nodiscard]] ConcurrentMpmSide& side() { return *side_; }
 
  private:
+  // The handed-over points on the shared grid: the body's sites as the
+  // continuum, the gas's as the gas. Rigid and frozen groups with points
+  // here are held at their velocity, as an MPM grip is.
+  [[nodiscard]] MpmModel model_of(const coupling::ConcurrentParams& cp,
+                                  const coupling::BodyHandover& body) const;
+
   std::vector<std::string> groups_;
+  int continuum_ = -1, gas_ = -1;  // material indices, -1 when absent
+  const grid::Material* gas_model_ = nullptr;
   grid::NodeBox band_;
   double reach_ = 0.0, lattice_constant_ = 0.0, time_step_ = 0.0;
   std::unique_ptr<MpmEngine> engine_;

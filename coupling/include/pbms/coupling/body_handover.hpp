@@ -19,13 +19,23 @@
 
 namespace pbms::coupling {
 
+// What a handed point stands for: a mesoparticle's site of the body's
+// continuum, or a point of the gas around the body, near it or far enough
+// away to measure the gas's own pressure (gas.probe_distance).
+enum class HandedKind : std::uint32_t { kContinuum = 0, kGas = 1, kGasAway = 2 };
+
 // One point of the body that the taking program advances.
 struct HandedPoint {
   std::int64_t id = 0;
   std::array<double, 3> x{}, v{};  // Å, Å/ps
   double mass = 0.0;               // g/mol
   std::uint32_t groups = 0;        // bit g: group BodyHandover::groups[g]
-  PBMS_FIELDS(id, x, v, mass, groups)
+  std::uint32_t kind = static_cast<std::uint32_t>(HandedKind::kContinuum);
+  PBMS_FIELDS(id, x, v, mass, groups, kind)
+
+  [[nodiscard]] bool is_gas() const {
+    return kind != static_cast<std::uint32_t>(HandedKind::kContinuum);
+  }
 };
 
 struct BodyHandover {

@@ -55,6 +55,30 @@ struct HeldGroup {
   double ramp_time = 0.0;  // ps: `velocity` reached over this time (velocity_ramp.hpp)
 };
 
+// Ideal-gas MPM points around the body (seed chapter 6), all in solver
+// units: Å, g/mol/Å³, bar, ps.
+struct GasParams {
+  double spacing = 0.0;     // simple cubic lattice edge
+  geometry::Vec3 origin{};  // one site of the lattice
+  double density = 0.0;     // g/mol/Å³
+  double pressure = 0.0;    // bar: the target
+  double gamma = 1.4;
+  double flip = 0.95;           // the gas points' own FLIP/PIC blend
+  double clearance = 0.0;       // sites nearer a body particle stay empty
+  double probe_distance = 0.0;  // the pressure is measured this far from the body
+  double settle_time = 0.0;     // ps: gas_pressure averages the samples from here on
+  bool walls = true;            // the non-periodic faces hold no normal velocity
+
+  [[nodiscard]] double point_volume() const { return spacing * spacing * spacing; }
+  [[nodiscard]] double point_mass() const { return density * point_volume(); }
+};
+
+// A block's volume from its three edges (the `volume` probe).
+struct VolumeProbe {
+  std::string group;
+  std::optional<double> reference;  // Å³: V0, else the volume at the start
+};
+
 struct ConcurrentParams {
   grid::RegularGrid grid{{0.0, 0.0, 0.0}, 1.0, {1, 1, 1}};
   std::array<bool, 3> periodic{false, false, false};
@@ -64,7 +88,7 @@ struct ConcurrentParams {
   double band_margin = 0.0;
   std::vector<ConcurrentRegion> regions;
   InterfaceTreatment interface = InterfaceTreatment::kSeed;
-  double youngs_modulus = 0.0;  // bar
+  double youngs_modulus = 0.0;  // bar; 0 without a continuum (no MPM region)
   double poisson_ratio = 0.0;
   bool ddmp = false;  // the MPM points' gradients
   // The DPD crystal's lattice constant at the run's temperature (each MPM
@@ -86,6 +110,10 @@ struct ConcurrentParams {
   // displacement jump is the interface opening.
   std::optional<std::pair<std::string, std::string>> opening;  // dpd plane, mpm plane
   std::optional<TensionProbe> tension;
+  std::optional<GasParams> gas;
+  // Berendsen rescaling of the DPD part about its mean velocity: K, ps.
+  std::optional<std::pair<double, double>> thermostat;
+  std::optional<VolumeProbe> volume;
 
   // Reads a `concurrent` stage's validated parameters (metal units) and
   // its dpd_mesoparticle material.

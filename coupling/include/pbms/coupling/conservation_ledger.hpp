@@ -23,13 +23,17 @@ class ConservationLedger {
     double time = 0.0;                 // ps
     double mass = 0.0;                 // g/mol
     std::array<double, 3> momentum{};  // g/mol Å/ps
-    double kinetic = 0.0;              // eV
-    std::vector<double> energies;      // eV, in the order of the names
+    // The momentum the part's walls gave it since the start (g/mol Å/ps):
+    // a ledger of `walls` counts it out of the body's momentum.
+    std::array<double, 3> wall_impulse{};
+    double kinetic = 0.0;          // eV
+    std::vector<double> energies;  // eV, in the order of the names
   };
 
-  // `energies`: the names of the part's other energy columns. Collective
-  // use over `comm`, the part's ranks.
-  ConservationLedger(MPI_Comm comm, std::vector<std::string> energies);
+  // `energies`: the names of the part's other energy columns; `walls`: the
+  // part has walls, whose impulse the rows carry. Collective use over
+  // `comm`, the part's ranks.
+  ConservationLedger(MPI_Comm comm, std::vector<std::string> energies, bool walls = false);
 
   // This rank's mass, momentum and kinetic energy at `time`, with room for
   // the other energies.
@@ -40,7 +44,8 @@ class ConservationLedger {
 
   // The largest change of the body's momentum since the first row, g/mol
   // Å/ps: this part's rows plus the other program's, which calls this at
-  // the same time with as many rows. Collective over both programs.
+  // the same time with as many rows, less what walls gave either. Collective
+  // over both programs.
   [[nodiscard]] double momentum_drift(MPI_Comm inter) const;
 
   [[nodiscard]] std::size_t rows() const { return time_.size(); }
@@ -57,7 +62,8 @@ class ConservationLedger {
   MPI_Comm comm_;
   std::vector<std::string> names_;
   std::vector<double> time_, mass_, kinetic_;
-  std::array<std::vector<double>, 3> momentum_;
+  bool walls_ = false;
+  std::array<std::vector<double>, 3> momentum_, wall_impulse_;
   std::vector<std::vector<double>> energies_;  // per name, per row
 };
 

@@ -36,6 +36,16 @@ struct UnitSystem {
 struct SolverOptions {
   StressUpdate stress_update = StressUpdate::kLast;
   double flip = 1.0;  // 1: FLIP, 0: PIC
+  // A material's own FLIP/PIC blend on top of `flip`, by material index (1,
+  // the default, adds nothing): an inviscid gas at one point per cell needs some PIC, which
+  // damps the velocity modes the grid cannot see (FLIP's null space). Taken
+  // towards the material's own nodal field, so that its momentum is kept
+  // (MpmSolver::relax_to_own_field).
+  std::vector<double> material_flip;
+  [[nodiscard]] double flip_of(int material) const {
+    const auto m = static_cast<std::size_t>(material);
+    return m < material_flip.size() ? material_flip[m] : 1.0;
+  }
   // Blend weight alpha of the plain gradient: 1 is plain MPM, 0 pure DDMP;
   // "face_vanishing" uses 4 xi (1 - xi) per axis (seed Appendix 2).
   bool ddmp = false;
@@ -130,6 +140,9 @@ class MpmSolver {
   // bc.point_velocities entry's nodes at its prescribed velocity in the
   // last step: the reaction a rigid grip, piston or flyer feels.
   [[nodiscard]] const std::vector<Vec3>& point_velocity_reactions() const { return reaction_; }
+  // The momentum the node constraints (walls) gave this rank's nodes in the
+  // last step, each node on one rank only (g/mol Å/ps in metal units).
+  [[nodiscard]] const Vec3& node_constraint_impulse() const { return constraint_impulse_; }
   // Between update_nodes and map_to_points: the mass on entry c's held
   // nodes (over the nodes this rank counts), and a change dv of those
   // nodes' velocity on the axes it holds (every copy; the caller changes
@@ -219,6 +232,8 @@ class MpmSolver {
   [[nodiscard]] bool inside(const Vec3& x) const;
   // The stencil of point p (a reference or a value, by evaluator).
   template <class Eval>
+  void relax_to_own_field(const Eval& eval, MaterialPoints& points);
+  template <class Eval>
   decltype(auto) locate(const Eval& eval, const MaterialPoints& points, size_t p) const;
   // Completes `components` lanes of the node sums from `first`.
   void sum_shared(int first, int components);
@@ -226,6 +241,7 @@ class MpmSolver {
   void scatter(const Eval& eval, const MaterialPoints& points, const BoundaryConditions& bc,
                bool force);
   void nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const;
+  [[nodiscard]] Vec3 node_constraint_impulse(const BoundaryConditions& bc) const;
   void apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
                               bool is_velocity) const;
   // Packs two nodal vector fields into kin_ for the point passes.
@@ -297,6 +313,7 @@ class MpmSolver {
   };
   std::vector<OtherHold> others_held_;
   std::vector<Vec3> reaction_;
+  Vec3 constraint_impulse_{0.0, 0.0, 0.0};
   std::vector<std::vector<double>>
       rigid_;  // per point_velocities entry: its points' share of each node's mass
   std::vector<char> unique_node_;
