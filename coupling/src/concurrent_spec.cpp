@@ -161,6 +161,25 @@ Param gas() {
            .def(0.95)
            .at_least(0)
            .at_most(1),
+       Param::choice("density_from", {"grid", "points"},
+                     "grid: each gas point's density is the gas's nodal mass over the nodal "
+                     "volume the body's mass does not fill (at the body's crystal density), "
+                     "every step; points: integrated along each point's path from its velocity "
+                     "gradient, as MPM does for solids")
+           .def(std::string("grid")),
+       Param::real("density_time", Dimension::kTime,
+                   "density_from grid: each point's density relaxes to the grid's over this "
+                   "time; shorter than the gas's sound crossing a cell it pumps energy into "
+                   "the sound (the grid's density acts a step late)")
+           .def(2.0)
+           .above(0),
+       Param::real("heat_bath_time", Dimension::kTime,
+                   "The gas's specific internal energy relaxes to its starting value over this "
+                   "time: the gas keeps the temperature it started at, as one in contact with "
+                   "the thermostatted body would, instead of heating up on the body's thermal "
+                   "motion; 0 leaves it adiabatic")
+           .def(1.0)
+           .at_least(0),
        Param::boolean("walls",
                       "The box's non-periodic faces are walls: the grid nodes on "
                       "them keep no normal velocity")

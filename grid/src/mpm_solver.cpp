@@ -1016,8 +1016,8 @@ void MpmSolver::hold_nodes_of_others(const double* records, double dt) {
 // point momenta with this step's shape functions (s-10) in the same pass.
 void MpmSolver::map_to_points(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
   enter(Phase::kMapToPoints);
-  if (!opt_.material_flip.empty()) {
-    with_eval([&](const auto& eval) { relax_to_own_field(eval, points); });
+  if (!opt_.material_flip.empty() || !opt_.material_density_from_grid.empty()) {
+    with_eval([&](const auto& eval) { own_material_fields(eval, points, dt); });
   }
   pack_kinematics(acceleration_, velocity_);
   const Lanes8 keep_all_but_momentum = {1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
@@ -1025,21 +1025,30 @@ void MpmSolver::map_to_points(MaterialPoints& points, const BoundaryConditions& 
   with_eval([&](const auto& eval) { grid_to_points(eval, points, bc, dt); });
 }
 
-// A material of blend f < 1 (SolverOptions::material_flip) has each point's
-// velocity moved (1 - f) of the way to its own material's nodal field there,
-// sum_i N_i (sum_q N_iq m_q v_q / sum_q N_iq m_q) over that material's points
-// q, before the grid's update reaches it. The PIC part of a FLIP/PIC blend
+// Two corrections of materials that keep their own nodal field
+// (SolverOptions::material_flip, material_density_from_grid), from the
+// nodes' sums of this step, before the grid's update reaches the points.
+//
+// A blend f < 1 moves each point's velocity (1 - f) of the way to its own
+// material's nodal field there, sum_i N_i (sum_q N_iq m_q v_q / sum_q N_iq
+// m_q) over that material's points q. The PIC part of a FLIP/PIC blend
 // would use every material's field, which at a node shared with another
-// material moves momentum between them; this one keeps each material's
-// momentum exactly (the N_i sum to one) and still damps the point velocities
-// the grid does not see.
+// material moves momentum between them; this keeps each material's momentum
+// exactly (the N_i sum to one) and still damps the point velocities the grid
+// does not see.
+//
+// A density from the grid is sum_i N_i m_i / sum_i N_i V_i, with m_i the
+// material's nodal mass and V_i the nodal volume less what the nodes' other
+// mass fills at SolverOptions::filler_density.
 template <class Eval>
-void MpmSolver::relax_to_own_field(const Eval& eval, MaterialPoints& points) {
+void MpmSolver::own_material_fields(const Eval& eval, MaterialPoints& points, double dt) {
   const size_t n = points.size();
   std::vector<double> field(4 * sums_.size(), 0.0);  // per node: m, m v
-  const auto relaxed = [&](size_t p) { return opt_.flip_of(points.material[p]) < 1.0; };
+  const auto own = [&](size_t p) {
+    return opt_.flip_of(points.material[p]) < 1.0 || opt_.density_from_grid(points.material[p]);
+  };
   for (size_t p = 0; p < n; ++p) {
-    if (!relaxed(p)) continue;
+    if (!own(p)) continue;
     const auto& s = locate(eval, points, p);
     for (int q = 0; q < s.count; ++q) {
       double* f = &field[4 * static_cast<size_t>(s.node[static_cast<size_t>(q)])];
@@ -1050,18 +1059,57 @@ void MpmSolver::relax_to_own_field(const Eval& eval, MaterialPoints& points) {
   }
   if (patch_.sum_shared) patch_.sum_shared(field.data(), 4, 4);
   for (size_t p = 0; p < n; ++p) {
-    if (!relaxed(p)) continue;
+    if (!own(p)) continue;
     const auto& s = locate(eval, points, p);
-    Vec3 own{0.0, 0.0, 0.0};
+    Vec3 v{0.0, 0.0, 0.0};
+    double mass = 0.0, free_volume = 0.0;
     for (int q = 0; q < s.count; ++q) {
-      const double* f = &field[4 * static_cast<size_t>(s.node[static_cast<size_t>(q)])];
+      const auto i = static_cast<size_t>(s.node[static_cast<size_t>(q)]);
+      const double* f = &field[4 * i];
+      const double N = s.N[static_cast<size_t>(q)];
       if (!(f[0] > 0.0)) continue;
-      const double w = s.N[static_cast<size_t>(q)] / f[0];
-      for (size_t a = 0; a < 3; ++a) own[a] += w * f[1 + a];
+      for (size_t a = 0; a < 3; ++a) v[a] += N / f[0] * f[1 + a];
+      if (!opt_.density_from_grid(points.material[p])) continue;
+      const double filled = std::max(0.0, sums_[i].lanes[sums::kMass] - f[0]) / opt_.filler_density;
+      mass += N * f[0];
+      free_volume += N * std::max(0.0, nodal_volume(i) - filled);
     }
     const double keep = opt_.flip_of(points.material[p]);
-    for (size_t a = 0; a < 3; ++a) points.v[p][a] += (1.0 - keep) * (own[a] - points.v[p][a]);
+    for (size_t a = 0; a < 3; ++a) points.v[p][a] += (1.0 - keep) * (v[a] - points.v[p][a]);
+    if (opt_.density_from_grid(points.material[p])) {
+      take_grid_density(points, p, mass, free_volume, dt);
+    }
   }
+}
+
+double MpmSolver::nodal_volume(size_t i) const {
+  const auto ijk = patch_.nodes.ijk_of_local(static_cast<std::int64_t>(i));
+  const double h = patch_.domain.cell_size();
+  double v = h * h * h;
+  for (size_t a = 0; a < 3; ++a) {
+    if (patch_.periodic[a]) continue;
+    if (ijk[a] == 0 || ijk[a] == patch_.domain.cells()[a]) v *= 0.5;
+  }
+  return v;
+}
+
+// Compresses point p isotropically from its density to the grid's, as one
+// step of the isotropic velocity gradient that makes that change: the
+// material's own update then does the work (an ideal gas's adiabatic de =
+// -P dv) and F follows, so that the point's volume is its mass over the new
+// density.
+void MpmSolver::take_grid_density(MaterialPoints& points, size_t p, double gas_mass,
+                                  double free_volume, double dt) const {
+  // A point among nodes the other material fills keeps its own density.
+  if (!(free_volume > 0.05 * std::pow(patch_.domain.cell_size(), 3))) return;
+  MaterialPointState& st = points.state[p];
+  const double target =
+      st.density + opt_.grid_density_weight * (gas_mass / free_volume - st.density);
+  const double stretch = std::cbrt(st.density / target);  // per axis
+  const Mat3 L = ((stretch - 1.0) / dt) * Mat3::Identity();
+  points.F[p] *= stretch;
+  st.density = target;
+  materials_[static_cast<size_t>(points.material[p])]->update(L, dt, st);
 }
 
 template <class Eval>

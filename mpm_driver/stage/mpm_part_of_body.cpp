@@ -54,14 +54,21 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
   m.options.small_mass_fraction = 0.0;
   m.options.ddmp = cp.ddmp;
   m.options.ddmp_face_vanishing = cp.ddmp;
+  const double a = lattice_constant_;
+  const double site_volume = a * a * a / 4.0;  // one fcc site
+  const double site_density = cp.particle_mass / site_volume;
   m.group_names = body.groups;
   if (cp.gas) {
     m.group_names.emplace_back(kGasAwayGroup);
     m.options.material_flip.assign(static_cast<std::size_t>(gas_) + 1, 1.0);
     m.options.material_flip[static_cast<std::size_t>(gas_)] = cp.gas->flip;
+    if (cp.gas->density_from_grid) {
+      m.options.material_density_from_grid.assign(static_cast<std::size_t>(gas_) + 1, 0);
+      m.options.material_density_from_grid[static_cast<std::size_t>(gas_)] = 1;
+      m.options.filler_density = site_density;  // the body's crystal
+      m.options.grid_density_weight = std::min(1.0, cp.time_step / cp.gas->density_time);
+    }
   }
-  const double a = lattice_constant_;
-  const double site_volume = a * a * a / 4.0;  // one fcc site
   for (const auto& p : body.points) {
     grid::MaterialPointState s;
     double volume = site_volume;
@@ -116,10 +123,24 @@ MpmPartOfBody::MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp
     materials.models.push_back(std::move(gas));
     materials.names.emplace_back(kGas);
     materials.density.push_back(cp.gas->density);
+    gas_energy_ = gas_model_->initial_state(cp.gas->density, cp.gas->pressure).internal_energy;
+    if (cp.gas->heat_bath_time > 0.0) gas_relaxation_ = cp.time_step / cp.gas->heat_bath_time;
   }
   engine_ = std::make_unique<MpmEngine>(comm, model_of(cp, body), std::move(materials));
   side_ = std::make_unique<ConcurrentMpmSide>(*engine_, cp.time_step, body.skin, gas_);
   time_step_ = cp.time_step;
+}
+
+void MpmPartOfBody::hold_gas_temperature() {
+  if (!(gas_relaxation_ > 0.0)) return;
+  grid::MaterialPoints& p = engine_->points();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.material[i] != gas_) continue;
+    grid::MaterialPointState& s = p.state[i];
+    s.internal_energy += gas_relaxation_ * (gas_energy_ - s.internal_energy);
+    s.stress =
+        grid::SymmetricTensor::isotropic(-gas_model_->pressure(s.density, s.internal_energy));
+  }
 }
 
 void MpmPartOfBody::ramp_grips(std::int64_t step) {

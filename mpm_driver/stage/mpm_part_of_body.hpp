@@ -19,6 +19,7 @@
 
 #include "engine/concurrent_mpm_side.hpp"
 #include "engine/mpm_engine.hpp"
+#include "materials/ideal_gas.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 
@@ -38,6 +39,10 @@ class MpmPartOfBody {
   // Before step `step`: the held groups on a velocity ramp take that
   // step's velocity.
   void ramp_grips(std::int64_t step);
+  // After a step: the gas's specific internal energy moves dt / tau of the
+  // way back to its starting value (gas.heat_bath_time), and its pressure
+  // with it.
+  void hold_gas_temperature();
 
   // The gas's material index, -1 without gas; the group of the gas points
   // away from the body (gas.probe_distance), where its pressure is measured.
@@ -56,7 +61,9 @@ class MpmPartOfBody {
 
   std::vector<std::string> groups_;
   int continuum_ = -1, gas_ = -1;  // material indices, -1 when absent
-  const grid::Material* gas_model_ = nullptr;
+  const IdealGas* gas_model_ = nullptr;
+  double gas_energy_ = 0.0;      // the gas's starting specific internal energy
+  double gas_relaxation_ = 0.0;  // dt / tau, 0 without a heat bath
   grid::NodeBox band_;
   double reach_ = 0.0, lattice_constant_ = 0.0, time_step_ = 0.0;
   std::unique_ptr<MpmEngine> engine_;

@@ -63,11 +63,14 @@ struct GasParams {
   double density = 0.0;     // g/mol/Å³
   double pressure = 0.0;    // bar: the target
   double gamma = 1.4;
-  double flip = 0.95;           // the gas points' own FLIP/PIC blend
-  double clearance = 0.0;       // sites nearer a body particle stay empty
-  double probe_distance = 0.0;  // the pressure is measured this far from the body
-  double settle_time = 0.0;     // ps: gas_pressure averages the samples from here on
-  bool walls = true;            // the non-periodic faces hold no normal velocity
+  double flip = 0.95;             // the gas points' own FLIP/PIC blend
+  bool density_from_grid = true;  // else integrated along each point's path
+  double density_time = 2.0;      // ps: the points' density relaxes to the grid's over it
+  double heat_bath_time = 1.0;    // ps: e relaxes to its start over it; 0: adiabatic
+  double clearance = 0.0;         // sites nearer a body particle stay empty
+  double probe_distance = 0.0;    // the pressure is measured this far from the body
+  double settle_time = 0.0;       // ps: gas_pressure averages the samples from here on
+  bool walls = true;              // the non-periodic faces hold no normal velocity
 
   [[nodiscard]] double point_volume() const { return spacing * spacing * spacing; }
   [[nodiscard]] double point_mass() const { return density * point_volume(); }
