@@ -507,6 +507,30 @@ def plot_inclusion(stages, outdir):
     return finish(fig, os.path.join(outdir, "volume_in_gas.png"))
 
 
+def plot_necks(stages, outdir):
+    """The seed's fig. 6.7: every neck of the run's concurrent stages (tables
+    neck_<name>) against time on one axis."""
+    curves = [(st, name[len("neck_"):]) for st in stages if st.kind == "concurrent"
+              for name in st.tables if name.startswith("neck_")]
+    if not curves:
+        return []
+    fig, ax = plt.subplots(figsize=(6.8, 4.4))
+    for st, pair in curves:
+        t = st.tables[f"neck_{pair}"]
+        gas = st.scalar("gas_pressure_target")
+        what = "no gas" if gas is None else f"gas {gas:g} GPa"
+        stable = st.scalar(f"neck_width_{pair}")
+        ax.plot(t["time"], t["width"], lw=1.0,
+                label=f"{st.name} ({what}): stable {stable:.1f} Å" if stable is not None
+                else f"{st.name} ({what})")
+    ax.set_xlabel("time (ps)")
+    ax.set_ylabel("neck width (Å)")
+    ax.set_title("neck between sintering bodies (seed fig. 6.7)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return finish(fig, os.path.join(outdir, "necks.png"))
+
+
 def plot_fit(stage, outdir):
     """fit_dpd_potential: the objective per evaluation, the fitted isotherm
     against its targets with residuals, and the elastic constants side by side."""
@@ -737,6 +761,7 @@ def main(argv):
         written += plot_runs_together(finished, run_dir)
         written += plot_concurrent_snapshots(finished, run_dir)
         written += plot_inclusion(finished, run_dir)
+        written += plot_necks(finished, run_dir)
         for stage in finished:
             if stage.kind == "concurrent":
                 # Not a plot, but derived from the run's files as the plots are.

@@ -133,6 +133,11 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
                              axis_index(t["axis"].as<std::string>()), t["fit_strain"].as<double>()};
   }
   if (const YAML::Node g = p["gas"]) c.gas = gas_from_yaml(g, p["box"]);
+  for (const auto& n : p["necks"]) {
+    c.necks.push_back(
+        {n["name"].as<std::string>(), n["first"].as<std::string>(), n["second"].as<std::string>()});
+  }
+  c.neck_stable_time = p["neck_stable_time"].as<double>();
   if (const YAML::Node t = p["thermostat"]) {
     c.thermostat = std::make_pair(t["temperature"].as<double>(), t["tau"].as<double>());
   }

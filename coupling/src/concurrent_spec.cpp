@@ -246,6 +246,29 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       "(and into a gas sharing its nodes) far faster than the pair thermostat (gamma) gives "
       "it back; this holds the body at its temperature"));
   s.params.push_back(volume());
+  s.params.push_back(
+      Param::list_of(
+          "necks",
+          Param::map("neck",
+                     {Param::identifier("name", "Key suffix: neck_<name>, neck_width_<name>, ...")
+                          .require(),
+                      Param::identifier("first", "One body (a group)")
+                          .require()
+                          .names_entry_of({"bodies", "groups"}),
+                      Param::identifier("second", "The other body")
+                          .require()
+                          .names_entry_of({"bodies", "groups"})},
+                     "A neck between two bodies"),
+          "Necks between sintering bodies (seed §6.4): the smallest diameter of their "
+          "cross-section perpendicular to the line through their centres of mass, in slabs "
+          "a plane spacing (a/2) thick over the middle half of that line, each slab's "
+          "diameter that of the circle of its particles' area (a³/4 each over the slab's "
+          "thickness); 0 before they touch")
+          .def(std::vector<std::string>{}));
+  s.params.push_back(Param::real("neck_stable_time", Dimension::kTime,
+                                 "neck_width_<name> is the mean over the run's last this much")
+                         .def(20.0)
+                         .above(0));
   s.params.push_back(wave());
   s.params.push_back(Param::map(
       "tension",
@@ -281,6 +304,13 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
        "Each sample: the gas pressure away from the body and over every gas point (gas)"},
       {"wall_impulse", OutputSpec::Shape::kScalar, "g/mol*Å/ps",
        "Magnitude of the momentum the walls took from the gas over the run (gas)"},
+      {"neck_<name>", OutputSpec::Shape::kTable, "",
+       "Each sample: the neck's width and the distance between the two bodies' centres"},
+      {"neck_width_<name>", OutputSpec::Shape::kScalar, "Å",
+       "The stable neck: the mean width over the last neck_stable_time"},
+      {"neck_final_<name>", OutputSpec::Shape::kScalar, "Å", "The neck's width at the end"},
+      {"contact_time_<name>", OutputSpec::Shape::kScalar, "ps",
+       "When the neck first had a width (absent if never)"},
       {"body_volume", OutputSpec::Shape::kScalar, "Å^3",
        "The volume.group's block volume, mean over the last half of the samples (volume)"},
       {"body_edges", OutputSpec::Shape::kTable, "",

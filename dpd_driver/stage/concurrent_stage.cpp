@@ -19,6 +19,7 @@
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "engine_checkpoint.hpp"
+#include "neck_probe.hpp"
 #include "pbms/analysis/quasi_static_pull.hpp"
 #include "pbms/coupling/body_handover.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
@@ -238,6 +239,10 @@ class DpdPartSampler {
       volume_.emplace(comm, *cp_.volume, part.group_mask(cp_.volume->group),
                       cp_.material_lattice_constant, view.view(part.engine()));
     }
+    for (const auto& n : cp_.necks) {
+      necks_.emplace_back(comm, n, part.group_mask(n.first), part.group_mask(n.second),
+                          cp_.material_lattice_constant);
+    }
   }
 
   // Collective over both programs.
@@ -247,6 +252,7 @@ class DpdPartSampler {
     probes_.sample(n, v);
     if (tension_) sample_tension(n);
     if (volume_) volume_->sample(static_cast<double>(n) * cp_.time_step, v);
+    for (auto& neck : necks_) neck.sample(static_cast<double>(n) * cp_.time_step, v);
     if (cp_.opening) {
       const auto mine = probes_.opening_moments(v);
       opening_t_.push_back(static_cast<double>(n) * cp_.time_step);
@@ -258,6 +264,7 @@ class DpdPartSampler {
   void report(StageResults& r) const {
     if (cp_.opening && !opening_.empty()) report_opening(r, opening_t_, opening_);
     if (volume_) volume_->report(r);
+    for (const auto& neck : necks_) neck.report(r, cp_.neck_stable_time);
   }
   void report_tension(StageResults& r) const {
     if (tension_) tension_->report(r);
@@ -265,12 +272,14 @@ class DpdPartSampler {
   void save(CheckpointArchive& a) const {
     if (tension_) tension_->save(a);
     if (volume_) volume_->save(a);
+    for (const auto& neck : necks_) neck.save(a);
     a.put("opening/time", opening_t_);
     a.put("opening/value", opening_);
   }
   void load(const CheckpointArchive& a) {
     if (tension_) tension_->load(a);
     if (volume_) volume_->load(a);
+    for (auto& neck : necks_) neck.load(a);
     opening_t_ = a.get("opening/time");
     opening_ = a.get("opening/value");
   }
@@ -296,6 +305,7 @@ class DpdPartSampler {
   coupling::ConcurrentProbes& probes_;
   std::optional<TensionSeries> tension_;
   std::optional<BlockVolumeProbe> volume_;
+  std::vector<NeckProbe> necks_;
   std::vector<double> opening_t_, opening_;
 };
 

@@ -1,6 +1,7 @@
 #include "dpd_model.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -118,6 +119,58 @@ void keep_final_state(const std::string& stage, DpdParticles all, bool write) {
 
 namespace {
 
+// An earlier stage's final state, its groups forgotten.
+DpdParticles earlier_state(const std::string& from, double mass, const std::string& stage) {
+  auto it = final_states().find(from);
+  if (it == final_states().end()) {
+    if (auto kept = final_state_from_disk(from)) {
+      it = final_states().emplace(from, std::move(*kept)).first;
+    }
+  }
+  if (it == final_states().end()) {
+    throw Error(fmt::format(
+        "stage '{}': initial.from_stage '{}' is not an earlier dpd_run or dpd_equilibrate "
+        "stage of this run",
+        stage, from));
+  }
+  DpdParticles particles = it->second;
+  particles.mass_per_type = {mass};
+  std::fill(particles.group_mask.begin(), particles.group_mask.end(), 0u);
+  return particles;
+}
+
+// The pieces one after another, each moved by its shift, ids running on.
+// A piece is a body with free surfaces: one that crossed a periodic face of
+// its own box would be cut in two here, and is refused.
+DpdParticles joined_pieces(const std::vector<DpdStageParams::Piece>& pieces, double mass,
+                           const std::string& stage) {
+  DpdParticles all;
+  all.mass_per_type = {mass};
+  std::int64_t next_id = 1;
+  for (const auto& piece : pieces) {
+    const DpdParticles p = earlier_state(piece.from_stage, mass, stage);
+    std::int64_t first = std::numeric_limits<std::int64_t>::max(), last = 0;
+    for (const auto id : p.id) {
+      first = std::min(first, id);
+      last = std::max(last, id);
+    }
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.image[i] != std::array<int, 3>{0, 0, 0}) {
+        throw Error(
+            fmt::format("stage '{}': piece '{}' has particles that crossed a periodic "
+                        "face of its box; equilibrate it with free surfaces",
+                        stage, piece.from_stage));
+      }
+      Vec3 x = p.x[i];
+      for (std::size_t a = 0; a < 3; ++a) x[a] += piece.shift[a];
+      all.add(next_id + (p.id[i] - first), p.type[i], x, p.v[i]);
+      all.internal_energy.back() = p.internal_energy[i];
+    }
+    if (!p.id.empty()) next_id += last - first + 1;
+  }
+  return all;
+}
+
 // The particles of an `initial` state; none when there is no `initial`.
 DpdParticles initial_particles(const DpdStageParams& p, double mass, const std::string& stage) {
   DpdParticles particles;
@@ -125,21 +178,9 @@ DpdParticles initial_particles(const DpdStageParams& p, double mass, const std::
   if (!p.initial) return particles;
   const DpdStageParams::Initial& initial = *p.initial;
   if (!initial.from_stage.empty()) {
-    auto it = final_states().find(initial.from_stage);
-    if (it == final_states().end()) {
-      if (auto kept = final_state_from_disk(initial.from_stage)) {
-        it = final_states().emplace(initial.from_stage, std::move(*kept)).first;
-      }
-    }
-    if (it == final_states().end()) {
-      throw Error(fmt::format(
-          "stage '{}': initial.from_stage '{}' is not an earlier dpd_run or dpd_equilibrate "
-          "stage of this run",
-          stage, initial.from_stage));
-    }
-    particles = it->second;
-    particles.mass_per_type = {mass};
-    std::fill(particles.group_mask.begin(), particles.group_mask.end(), 0u);
+    particles = earlier_state(initial.from_stage, mass, stage);
+  } else if (!initial.pieces.empty()) {
+    particles = joined_pieces(initial.pieces, mass, stage);
   } else if (!initial.h5md.empty()) {
     particles = from_snapshot(read_h5md_particles(initial.h5md), mass);
   } else if (!initial.lammps_data.empty()) {
@@ -263,7 +304,7 @@ DpdModel build_dpd_model(const DpdStageParams& p, const MesoparticleMaterial& ma
   // Particles: lattice-filled bodies, or one existing state.
   if (p.initial && p.initial->keys != 1) {
     throw Error(fmt::format(
-        "stage '{}': `initial` takes exactly one of from_stage, h5md, lammps_data", stage));
+        "stage '{}': `initial` takes exactly one of from_stage, h5md, lammps_data, pieces", stage));
   }
   if (p.initial && !p.bodies.empty()) {
     throw Error(fmt::format("stage '{}': give `bodies` or `initial`, not both", stage));

@@ -35,7 +35,24 @@ std::vector<Param> dpd_stage_params() {
                                     "An earlier dpd_equilibrate or dpd_run stage's final state")
                       .earlier_stage({"dpd_run", "dpd_equilibrate"}),
                   Param::file("h5md", "The last frame of an H5MD file"),
-                  Param::file("lammps_data", "A LAMMPS data file (atom_style atomic)")},
+                  Param::file("lammps_data", "A LAMMPS data file (atom_style atomic)"),
+                  Param::list_of(
+                      "pieces",
+                      Param::map("piece",
+                                 {Param::identifier("from_stage",
+                                                    "An earlier dpd_equilibrate or dpd_run stage's "
+                                                    "final state")
+                                      .require()
+                                      .earlier_stage({"dpd_run", "dpd_equilibrate"}),
+                                  Param::real_list("shift", Dimension::kLength,
+                                                   "Moves the state by this much")
+                                      .def(std::vector<double>{0.0, 0.0, 0.0})
+                                      .length(3, 3)},
+                                 "One earlier state, moved into place"),
+                      "Several earlier states, each moved into place, as one set of bodies "
+                      "(the seed's sintering assemblies: spheres and a rod, each "
+                      "equilibrated alone); ids run on from piece to piece")
+                      .length(1, 64)},
                  "Start from an existing state instead of `bodies`")
           .exactly_one_key()
           .not_with("bodies");
@@ -196,6 +213,9 @@ DpdStageParams::Initial initial_from_yaml(const YAML::Node& n) {
   if (n["from_stage"]) i.from_stage = n["from_stage"].as<std::string>();
   if (n["h5md"]) i.h5md = n["h5md"].as<std::string>();
   if (n["lammps_data"]) i.lammps_data = n["lammps_data"].as<std::string>();
+  for (const auto& piece : n["pieces"]) {
+    i.pieces.push_back({piece["from_stage"].as<std::string>(), vec3(piece["shift"])});
+  }
   return i;
 }
 

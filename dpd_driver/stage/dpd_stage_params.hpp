@@ -48,9 +48,14 @@ struct DpdStageParams {
   std::string material;
   OrthogonalBox box;
   // `initial`: how many of its keys are given, and each one's value.
+  struct Piece {
+    std::string from_stage;
+    Vec3 shift{0.0, 0.0, 0.0};
+  };
   struct Initial {
     std::size_t keys = 0;
     std::string from_stage, h5md, lammps_data;
+    std::vector<Piece> pieces;
   };
   std::optional<Initial> initial;
   struct Body {

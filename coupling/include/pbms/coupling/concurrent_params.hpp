@@ -82,6 +82,12 @@ struct VolumeProbe {
   std::optional<double> reference;  // Å³: V0, else the volume at the start
 };
 
+// A neck between two bodies (groups) that sinter (the `necks` probe).
+struct NeckPair {
+  std::string name;
+  std::string first, second;
+};
+
 struct ConcurrentParams {
   grid::RegularGrid grid{{0.0, 0.0, 0.0}, 1.0, {1, 1, 1}};
   std::array<bool, 3> periodic{false, false, false};
@@ -117,6 +123,8 @@ struct ConcurrentParams {
   // Berendsen rescaling of the DPD part about its mean velocity: K, ps.
   std::optional<std::pair<double, double>> thermostat;
   std::optional<VolumeProbe> volume;
+  std::vector<NeckPair> necks;
+  double neck_stable_time = 20.0;  // ps: neck_width_<name> averages the last this much
 
   // Reads a `concurrent` stage's validated parameters (metal units) and
   // its dpd_mesoparticle material.

@@ -1,0 +1,61 @@
+source "$(dirname "$0")/lib.sh"
+# Two copper spheres sintering (seed §6.2.2, assembly 0; issue 31), a short
+# run of configs/sintering.yaml: without gas and at 1 GPa, 10 ps each after
+# a 10 ps sphere. Against references the program did not make:
+#  - the seed's counts: 1,048 particles in a sphere of radius 4 a_cg about an
+#    octahedral site, 2,096 in the pair built from two copies (initial.pieces);
+#  - a neck forms at 1 GPa within 15 ps (the issue's bound; the seed: from
+#    about 5 ps), and without gas;
+#  - before contact there is no neck (the spheres start 7.23 Å apart);
+#  - mass kept and momentum, walls' impulse counted, to round-off;
+#  - fig. 6.7's plot written.
+"$PY" - "$ROOT/configs/sintering.yaml" > sintering.yaml <<'PYEOF'
+import sys
+import yaml
+config = yaml.safe_load(open(sys.argv[1]))
+config["run"] = {"name": "sintering", "seed": 2026, "output": "runs"}
+config["stages"] = [s for s in config["stages"] if s["name"] in ("sphere", "pair_dpd_only", "pair_1GPa")]
+for s in config["stages"]:
+    s["steps"] = 1000
+    if s["name"] != "sphere":
+        s["neck_stable_time"] = "3 ps"
+        s["particles_every"] = 0
+yaml.safe_dump(config, sys.stdout, sort_keys=False)
+PYEOF
+"$PBMS" run sintering.yaml > run.out 2>&1 || { tail -30 run.out; fail "the run failed"; }
+"$PY" - runs/sintering <<'PYEOF' || fail "the sintering pair misses its references"
+import os
+import sys
+import h5py
+import numpy as np
+
+run = sys.argv[1]
+bad = []
+with h5py.File(f"{run}/results.h5", "r") as f:
+    scalar = lambda s, k: float(f[s][k][()]) if k in f[s] else None
+    if scalar("sphere", "particles") != 1048:
+        bad.append(f"the sphere holds {scalar('sphere', 'particles')} particles, not the seed's 1,048")
+    for s in ("pair_dpd_only", "pair_1GPa"):
+        neck = f[s]["neck_pair"]
+        contact = scalar(s, "contact_time_pair")
+        print(f"{s}: {scalar(s, 'dpd_particles'):.0f} particles; first neck at {contact} ps; "
+              f"neck at the end {scalar(s, 'neck_final_pair'):.1f} Å; "
+              f"momentum change {scalar(s, 'momentum_change'):.2g}")
+        if scalar(s, "dpd_particles") != 2096:
+            bad.append(f"{s}: {scalar(s, 'dpd_particles')} particles, not two spheres' 2,096")
+        if neck["width"][0] != 0.0:
+            bad.append(f"{s}: a neck of {neck['width'][0]:.1f} Å before the spheres touched")
+        if contact is None or contact > 15.0:
+            bad.append(f"{s}: no neck within 15 ps (first at {contact} ps)")
+        if scalar(s, "momentum_change") > 1e-12:
+            bad.append(f"{s}: momentum changed by {scalar(s, 'momentum_change'):.3g} of M c")
+        mass = f[s]["dpd_ledger"]["mass"][:] + f[s]["mpm_ledger"]["mass"][:]
+        if np.ptp(mass) > 1e-12 * mass[0]:
+            bad.append(f"{s}: the mass changed by {np.ptp(mass):.3g} g/mol")
+if not os.path.isfile(f"{run}/necks.png"):
+    bad.append("necks.png (fig. 6.7) was not written")
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PYEOF
+echo "PASS"
