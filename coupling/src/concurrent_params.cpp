@@ -66,10 +66,15 @@ std::string ConcurrentParams::part(Solver s) const {
     if (r.solver == s) names.push_back(fmt::format("'{}'", r.name));
   }
   const bool dpd = s == Solver::kDpd;
-  if (names.empty()) return fmt::format("the {} part", dpd ? "DPD" : "MPM");
-  return fmt::format("the {} part ({} {}{})", dpd ? "DPD" : "MPM",
-                     names.size() == 1 ? "region" : "regions", fmt::join(names, ", "),
-                     dpd ? " and particles in no region" : "");
+  const std::string what = dpd ? "DPD" : "MPM";
+  const std::string gas_text = !dpd && gas ? "the gas around the body" : "";
+  if (names.empty()) {
+    return gas_text.empty() ? fmt::format("the {} part", what)
+                            : fmt::format("the {} part ({})", what, gas_text);
+  }
+  return fmt::format("the {} part ({} {}{}{})", what, names.size() == 1 ? "region" : "regions",
+                     fmt::join(names, ", "), dpd ? " and particles in no region" : "",
+                     gas_text.empty() ? "" : " and " + gas_text);
 }
 
 ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::Node& material) {

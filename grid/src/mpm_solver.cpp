@@ -666,9 +666,9 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
                                "blew up"
                              : "inverted (det F = {:.3g}): the time step is too large or the "
                                "material failed";
-      throw Error(fmt::format("{} {} at ({:.6g}, {:.6g}, {:.6g}) {}", opt_.point_noun, points.id[p],
-                              points.x[p][0], points.x[p][1], points.x[p][2],
-                              fmt::format(fmt::runtime(what), J[i])));
+      throw Error(fmt::format(
+          "{} {} at ({:.6g}, {:.6g}, {:.6g}) {}", opt_.noun_of(points.material[p]), points.id[p],
+          points.x[p][0], points.x[p][1], points.x[p][2], fmt::format(fmt::runtime(what), J[i])));
     }
   }
   for (size_t i = 0; i < m;) {
@@ -728,15 +728,15 @@ void MpmSolver::update_stress_block(MaterialPoints& points, size_t p0, size_t m,
     return;
   }
   x = d.wrapped(x, patch_.periodic);
-  if (!d.contains(x)) point_off_grid(points.id[p], x, v, dt);
+  if (!d.contains(x)) point_off_grid(opt_.noun_of(points.material[p]), points.id[p], x, v, dt);
 }
 
 // A point whose position is not finite did not leave the grid: the step
 // blew up (a NaN force or velocity), and the message says so.
 // One that jumped more than half a cell in its last step names the likely
 // cause, a time step too large for the model.
-void MpmSolver::point_off_grid(int64_t id, const Vec3& x, const Vec3& v, double dt) const {
-  const char* noun = opt_.point_noun.c_str();
+void MpmSolver::point_off_grid(const std::string& noun, int64_t id, const Vec3& x, const Vec3& v,
+                               double dt) const {
   if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])) {
     const double jump = dt * std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     const double h = patch_.domain.cell_size();

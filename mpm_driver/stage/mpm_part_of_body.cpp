@@ -62,6 +62,8 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
     m.group_names.emplace_back(kGasAwayGroup);
     m.options.material_flip.assign(static_cast<std::size_t>(gas_) + 1, 1.0);
     m.options.material_flip[static_cast<std::size_t>(gas_)] = cp.gas->flip;
+    m.options.material_nouns.assign(static_cast<std::size_t>(gas_) + 1, "");
+    m.options.material_nouns[static_cast<std::size_t>(gas_)] = "gas point";
     if (cp.gas->density_from_grid) {
       m.options.material_density_from_grid.assign(static_cast<std::size_t>(gas_) + 1, 0);
       m.options.material_density_from_grid[static_cast<std::size_t>(gas_)] = 1;

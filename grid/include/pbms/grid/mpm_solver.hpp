@@ -76,8 +76,14 @@ struct SolverOptions {
   // point, which is only right for a serial run.
   double reference_point_mass = 0.0;
   UnitSystem units;
-  // What a failure calls a point (the DPD/MPM-grid step's are particles).
+  // What a failure calls a point (the DPD/MPM-grid step's are particles),
+  // and, by material index where given, a material's ("gas point").
   std::string point_noun = "material point";
+  std::vector<std::string> material_nouns;
+  [[nodiscard]] const std::string& noun_of(int material) const {
+    const auto m = static_cast<std::size_t>(material);
+    return m < material_nouns.size() && !material_nouns[m].empty() ? material_nouns[m] : point_noun;
+  }
 };
 
 // The part of the grid one solver works on.
@@ -306,7 +312,8 @@ class MpmSolver {
   void update_stress_block(MaterialPoints& points, size_t p0, size_t m, MaterialBlock& b,
                            double dt) const;
   void move_point(MaterialPoints& points, size_t p, const Vec3& v, double dt) const;
-  [[noreturn]] void point_off_grid(int64_t id, const Vec3& x, const Vec3& v, double dt) const;
+  [[noreturn]] void point_off_grid(const std::string& noun, int64_t id, const Vec3& x,
+                                   const Vec3& v, double dt) const;
   void sum_rigid();
   void impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const;
   void hold_prescribed(const MaterialPoints& points, const BoundaryConditions& bc, size_t p,
