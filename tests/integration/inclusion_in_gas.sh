@@ -7,10 +7,11 @@ source "$(dirname "$0")/lib.sh"
 #  - the gas pressure reached away from the cube, within 5 % of the target
 #    over 10-20 ps (the issue's tolerance);
 #  - the cube's V/V0 at 1 GPa within 1 % of the bulk isotherm of the same
-#    DPD potential (dpd_isotherm, a periodic crystal with no gas and no grid).
-#    At 5 GPa it is printed, not asserted: it moved by 1.4 points between
-#    set-ups (0.9647 after 50 ps of the cube alone, 0.9514 after 20 ps,
-#    against the bulk 0.9663), which one seed cannot settle;
+#    DPD potential (dpd_isotherm, a periodic crystal with no gas and no grid);
+#    seeds 2026-2028 of the whole config: -0.19, -0.09, +0.45 points.
+#    At 3 and 5 GPa it is printed, not asserted: there the cube does not stay
+#    a crystal (seeds 2027 and 2028 ended at V/V0 0.996-1.068, its inner
+#    planes moving apart as it heats to 305-353 K; docs/chapter6.md);
 #  - the body's mass constant and its momentum, walls' impulse counted,
 #    conserved to round-off (1e-12 of M c; measured ~1e-16);
 #  - the DPD part at 298 K within 3 % up to 1 GPa (at 5 GPa the gas heats
@@ -83,7 +84,7 @@ with h5py.File(f"{run}/results.h5", "r") as f:
         if target >= 0.5:
             dpd = bulk("dpd_isotherm", target)
             print(f"  bulk DPD {dpd:.5f} ({100 * (ratio - dpd):+.2f} points)")
-        if target >= 0.5 and (everything or target < 2.0):
+        if 0.5 <= target < 2.0:
             if abs(ratio - dpd) > 0.01:
                 bad.append(f"{s}: V/V0 {ratio:.5f} more than 1 % off the bulk DPD {dpd:.5f}")
             if everything:

@@ -1,3 +1,4 @@
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -74,6 +75,21 @@ extern "C" void on_crash_signal(int sig) {
 
 void copy_name(char* dst, size_t cap, const std::string& s) {
   std::snprintf(dst, cap, "%s", s.c_str());
+}
+
+// This process's CPU time so far (user and system, s) and its peak resident
+// memory (MB).
+struct ProcessUsage {
+  double cpu_s = 0.0;
+  double peak_rss_mb = 0.0;
+};
+ProcessUsage process_usage() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
+  return {seconds(u.ru_utime) + seconds(u.ru_stime), static_cast<double>(u.ru_maxrss) / 1024.0};
 }
 
 double seconds_since(Clock::time_point t0) {
@@ -241,7 +257,9 @@ class DriverRuntime {
       plan.resume_from = rs.resume_from;
       ctx.set_checkpoint_plan(std::move(plan));
       auto stage = registry_.create(rs.kind);
+      const ProcessUsage before = process_usage();
       stage->run(ctx);
+      record_usage(ctx.results(), before);
       if (group().rank() == 0) {
         protocol::StageDone done;
         done.request = rs.request;
@@ -265,6 +283,20 @@ class DriverRuntime {
     }
     g_stage[0] = 0;
     g_step.store(-1);
+  }
+
+  // The program's CPU time over the stage, summed over its ranks, and the
+  // largest peak memory of any of its ranks, as attributes of the stage's
+  // results (cpu_s.<program>, peak_rss_mb.<program>): what a cost table
+  // needs, kept out of the summary's scalars, which a resumed run must give
+  // bit for bit. Collective over the program's ranks.
+  void record_usage(StageResults& r, const ProcessUsage& before) {
+    const ProcessUsage now = process_usage();
+    double cpu = now.cpu_s - before.cpu_s, rss = now.peak_rss_mb;
+    MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_SUM, group().get());
+    MPI_Allreduce(MPI_IN_PLACE, &rss, 1, MPI_DOUBLE, MPI_MAX, group().get());
+    r.attributes["cpu_s." + info_.program] = fmt::format("{:.3f}", cpu);
+    r.attributes["peak_rss_mb." + info_.program] = fmt::format("{:.1f}", rss);
   }
 
   const DriverInfo& info_;
