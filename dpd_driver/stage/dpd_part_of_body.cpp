@@ -127,10 +127,7 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
   SplitBody body = split_body(model_.particles, cp_);
   model_.particles = DpdParticles{};  // now in `body`
   mpm_count_ = static_cast<double>(body.mpm.size());
-  if (cp_.gas) {
-    add_gas(body, cp_, {model_.box.lo, model_.box.hi});
-    gas_count_ = static_cast<double>(body.mpm.size()) - mpm_count_;
-  }
+  if (cp_.gas) add_gas(body, cp_, {model_.box.lo, model_.box.hi});
   // Partners within the list's reach, chosen afresh when either side has
   // moved half the skin.
   reach_ = std::max(model_.pair->cutoff(), model_.settings.friction.cutoff) + model_.settings.skin;

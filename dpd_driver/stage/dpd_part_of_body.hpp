@@ -51,7 +51,6 @@ class DpdPartOfBody {
   [[nodiscard]] const std::array<double, 3>& body_extent() const { return extent_; }
   [[nodiscard]] double dpd_particles() const { return dpd_count_; }
   [[nodiscard]] double mpm_points() const { return mpm_count_; }
-  [[nodiscard]] double gas_points() const { return gas_count_; }
 
   // Before step `step`: the rigid groups on a velocity ramp take that
   // step's velocity.
@@ -68,7 +67,7 @@ class DpdPartOfBody {
   double reach_ = 0.0;
   DpdModel model_;  // its particles and pair style moved into the engine
   std::array<double, 3> extent_{};
-  double dpd_count_ = 0.0, mpm_count_ = 0.0, gas_count_ = 0.0;
+  double dpd_count_ = 0.0, mpm_count_ = 0.0;
   std::unique_ptr<DpdEngine> engine_;
   std::unique_ptr<DpdGridStep> grid_;
   std::unique_ptr<ConcurrentDpdSide> side_;

@@ -11,6 +11,13 @@ GasProbe::GasProbe(MPI_Comm comm, const coupling::GasParams& gas, int gas_materi
                    std::uint32_t away_mask)
     : comm_(comm), gas_(gas), material_(gas_material), away_(away_mask) {}
 
+std::array<double, 3> GasProbe::total_impulse() const {
+  std::array<double, 3> total = impulse_;
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, total.data(), 3, MPI_DOUBLE, MPI_SUM, comm_),
+             "MPI_Allreduce (wall impulse)");
+  return total;
+}
+
 void GasProbe::after_step(const MpmEngine& engine) {
   const grid::Vec3& j = engine.solver().node_constraint_impulse();
   for (std::size_t a = 0; a < 3; ++a) impulse_[a] += j[a];
@@ -61,16 +68,12 @@ void GasProbe::report(StageResults& r, std::int64_t gas_points) const {
     r.add_scalar("gas_pressure", sum / n, "GPa");
     if (target > 0.0) r.add_scalar("gas_pressure_error", sum / n / target - 1.0, "1");
   }
-  std::array<double, 3> total = impulse_;
-  mpi::check(MPI_Allreduce(MPI_IN_PLACE, total.data(), 3, MPI_DOUBLE, MPI_SUM, comm_),
-             "MPI_Allreduce (wall impulse)");
+  const std::array<double, 3> total = total_impulse();
   r.add_scalar("wall_impulse", std::hypot(total[0], total[1], total[2]), "g/mol*Å/ps");
 }
 
 void GasProbe::save(CheckpointArchive& a) const {
-  std::array<double, 3> total = impulse_;
-  mpi::check(MPI_Allreduce(MPI_IN_PLACE, total.data(), 3, MPI_DOUBLE, MPI_SUM, comm_),
-             "MPI_Allreduce (wall impulse)");
+  const std::array<double, 3> total = total_impulse();
   a.put("gas/wall_impulse", std::vector<double>(total.begin(), total.end()));
   a.put("gas/time", time_);
   a.put("gas/away", away_pressure_);

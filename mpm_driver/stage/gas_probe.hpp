@@ -40,6 +40,9 @@ class GasProbe {
   void load(const CheckpointArchive& a);
 
  private:
+  // The walls' impulse since the start over the part's ranks. Collective.
+  [[nodiscard]] std::array<double, 3> total_impulse() const;
+
   MPI_Comm comm_;
   coupling::GasParams gas_;
   int material_;
