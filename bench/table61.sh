@@ -27,6 +27,7 @@ import sys
 import yaml
 config = yaml.safe_load(open(sys.argv[1]))
 config["run"] = {"name": "table61", "seed": 2026, "output": "runs"}
+config["launch"] = {"dpd": 1, "mpm": 1}
 config["stages"] = [s for s in config["stages"] if s["name"] in ("sphere", "pair_1GPa")]
 for s in config["stages"]:
     if s["name"] == "pair_1GPa":

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "eam_material_spec.hpp"
+#include "md_bodies.hpp"
 #include "md_elastic.hpp"
 #include "md_isotherm.hpp"
 #include "md_tension.hpp"
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   registry.add<pbms::md::IsothermStage>();
   registry.add<pbms::md::ElasticStage>();
   registry.add<pbms::md::TensionStage>();
+  registry.add<pbms::md::BodiesStage>();
   for (auto& m : pbms::md::eam_material_kinds()) registry.add_material(std::move(m));
   pbms::DriverInfo info{"md_driver", "md", {{"lammps", PBMS_LAMMPS_VERSION}}};
   return pbms::run_driver(argc, argv, info, registry);

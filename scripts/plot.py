@@ -508,19 +508,19 @@ def plot_inclusion(stages, outdir):
 
 
 def plot_necks(stages, outdir):
-    """The seed's fig. 6.7: every neck of the run's concurrent stages (tables
-    neck_<name>) against time on one axis."""
-    curves = [(st, name[len("neck_"):]) for st in stages if st.kind == "concurrent"
-              for name in st.tables if name.startswith("neck_")]
+    """The seed's fig. 6.7: the neck `pair` of every concurrent and md_bodies
+    stage against time on one axis (DPD with and without gas, and MD)."""
+    curves = [st for st in stages if st.kind in ("concurrent", "md_bodies")
+              and "neck_pair" in st.tables]
     if not curves:
         return []
     fig, ax = plt.subplots(figsize=(6.8, 4.4))
-    for st, pair in curves:
-        t = st.tables[f"neck_{pair}"]
+    for st in curves:
+        t = st.tables["neck_pair"]
         gas = st.scalar("gas_pressure_target")
-        what = "no gas" if gas is None else f"gas {gas:g} GPa"
-        stable = st.scalar(f"neck_width_{pair}")
-        ax.plot(t["time"], t["width"], lw=1.0,
+        what = "MD" if st.kind == "md_bodies" else "no gas" if gas is None else f"gas {gas:g} GPa"
+        stable = st.scalar("neck_width_pair")
+        ax.plot(t["time"], t["width"], lw=1.0, color="black" if st.kind == "md_bodies" else None,
                 label=f"{st.name} ({what}): stable {stable:.1f} Å" if stable is not None
                 else f"{st.name} ({what})")
     ax.set_xlabel("time (ps)")
@@ -529,6 +529,38 @@ def plot_necks(stages, outdir):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     return finish(fig, os.path.join(outdir, "necks.png"))
+
+
+def plot_assemblies(stages, outdir):
+    """A sintering assembly (seed figs 6.8-6.16): each neck of the stage
+    against time, and the rod's bend on a second axis."""
+    written = []
+    for st in stages:
+        necks = sorted(n for n in st.tables if n.startswith("neck_") and n != "neck_pair")
+        rods = sorted(n for n in st.tables if n.startswith("rod_"))
+        if st.kind != "concurrent" or not (necks or rods):
+            continue
+        fig, ax = plt.subplots(figsize=(6.8, 4.4))
+        for n in necks:
+            t = st.tables[n]
+            touch = st.scalar(f"contact_time_{n[len('neck_'):]}")
+            ax.plot(t["time"], t["width"], lw=1.0,
+                    label=f"{n[len('neck_'):]}" + (f" (touch {touch:g} ps)" if touch is not None else " (never touch)"))
+        ax.set_xlabel("time (ps)")
+        ax.set_ylabel("neck width (Å)")
+        if rods:
+            bend = ax.twinx()
+            for r in rods:
+                t = st.tables[r]
+                bend.plot(t["time"], t["bend"], "k--", lw=1.0, label=f"{r[len('rod_'):]} bend")
+            bend.set_ylabel("rod bend (Å)")
+            bend.legend(fontsize=8, loc="lower right")
+        gas = st.scalar("gas_pressure_target")
+        ax.set_title(f"{st.name}" + (f", gas {gas:g} GPa" if gas is not None else ""))
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left")
+        written += finish(fig, os.path.join(outdir, f"{safe(st.name)}_necks.png"))
+    return written
 
 
 def plot_fit(stage, outdir):
@@ -762,6 +794,7 @@ def main(argv):
         written += plot_concurrent_snapshots(finished, run_dir)
         written += plot_inclusion(finished, run_dir)
         written += plot_necks(finished, run_dir)
+        written += plot_assemblies(finished, run_dir)
         for stage in finished:
             if stage.kind == "concurrent":
                 # Not a plot, but derived from the run's files as the plots are.

@@ -140,9 +140,14 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
   if (const YAML::Node g = p["gas"]) c.gas = gas_from_yaml(g, p["box"]);
   for (const auto& n : p["necks"]) {
     c.necks.push_back(
-        {n["name"].as<std::string>(), n["first"].as<std::string>(), n["second"].as<std::string>()});
+        {n["name"].as<std::string>(), n["first"].as<std::string>(), n["second"].as<std::string>(),
+         n["second_rod_axis"] ? axis_index(n["second_rod_axis"].as<std::string>()) : -1});
   }
   c.neck_stable_time = p["neck_stable_time"].as<double>();
+  for (const auto& r : p["rods"]) {
+    c.rods.push_back({r["name"].as<std::string>(), r["group"].as<std::string>(),
+                      axis_index(r["axis"].as<std::string>())});
+  }
   if (const YAML::Node t = p["thermostat"]) {
     c.thermostat = std::make_pair(t["temperature"].as<double>(), t["tau"].as<double>());
   }

@@ -257,18 +257,37 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
                           .names_entry_of({"bodies", "groups"}),
                       Param::identifier("second", "The other body")
                           .require()
-                          .names_entry_of({"bodies", "groups"})},
+                          .names_entry_of({"bodies", "groups"}),
+                      Param::choice("second_rod_axis", {"x", "y", "z"},
+                                    "The second body is a rod along this axis: the line runs "
+                                    "from the first body's centre square onto the rod's axis")},
                      "A neck between two bodies"),
           "Necks between sintering bodies (seed §6.4): the smallest diameter of their "
           "cross-section perpendicular to the line through their centres of mass, in slabs "
           "a plane spacing (a/2) thick over the middle half of that line, each slab's "
           "diameter that of the circle of its particles' area (a³/4 each over the slab's "
-          "thickness); 0 before they touch")
+          "thickness), counting the particles within half the centre distance of the line; "
+          "0 before they touch")
           .def(std::vector<std::string>{}));
   s.params.push_back(Param::real("neck_stable_time", Dimension::kTime,
                                  "neck_width_<name> is the mean over the run's last this much")
                          .def(20.0)
                          .above(0));
+  s.params.push_back(
+      Param::list_of(
+          "rods",
+          Param::map(
+              "rod",
+              {Param::identifier("name", "Key suffix: rod_<name>, rod_deflection_<name>").require(),
+               Param::identifier("group", "The rod (a body or group)")
+                   .require()
+                   .names_entry_of({"bodies", "groups"}),
+               Param::choice("axis", {"x", "y", "z"}, "The rod's axis").def(std::string("z"))},
+              "A rod whose bend is followed"),
+          "Rods that spheres sinter to (seed §6.4): the bend is the largest distance of the "
+          "rod's centre line (its slabs' centroids, a thick along the axis) from the chord "
+          "between its ends")
+          .def(std::vector<std::string>{}));
   s.params.push_back(wave());
   s.params.push_back(Param::map(
       "tension",
@@ -305,12 +324,19 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       {"wall_impulse", OutputSpec::Shape::kScalar, "g/mol*Å/ps",
        "Magnitude of the momentum the walls took from the gas over the run (gas)"},
       {"neck_<name>", OutputSpec::Shape::kTable, "",
-       "Each sample: the neck's width and the distance between the two bodies' centres"},
+       "Each sample: the neck's width, the distance between the two bodies' centres and the "
+       "closest approach of their particles (capped at 2 a)"},
       {"neck_width_<name>", OutputSpec::Shape::kScalar, "Å",
        "The stable neck: the mean width over the last neck_stable_time"},
       {"neck_final_<name>", OutputSpec::Shape::kScalar, "Å", "The neck's width at the end"},
       {"contact_time_<name>", OutputSpec::Shape::kScalar, "ps",
-       "When the neck first had a width (absent if never)"},
+       "First sample where a particle of each body is within 1.1 nearest-neighbour distances "
+       "(1.1 a/√2) of the other (absent if never)"},
+      {"rod_<name>", OutputSpec::Shape::kTable, "", "Each sample: the rod's bend"},
+      {"rod_deflection_<name>", OutputSpec::Shape::kScalar, "Å",
+       "The rod's largest bend over the run (its largest lateral deflection)"},
+      {"rod_bend_initial_<name>", OutputSpec::Shape::kScalar, "Å",
+       "The bend at the start: the straight rod's slab scatter"},
       {"body_volume", OutputSpec::Shape::kScalar, "Å^3",
        "The volume.group's block volume, mean over the last half of the samples (volume)"},
       {"body_edges", OutputSpec::Shape::kTable, "",

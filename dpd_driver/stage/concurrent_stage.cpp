@@ -35,6 +35,7 @@
 #include "pbms/io/h5md_writer.hpp"
 #include "pbms/units.hpp"
 #include "pbms/velocity_ramp.hpp"
+#include "rod_probe.hpp"
 
 namespace pbms::dpd {
 namespace {
@@ -243,6 +244,10 @@ class DpdPartSampler {
       necks_.emplace_back(comm, n, part.group_mask(n.first), part.group_mask(n.second),
                           cp_.material_lattice_constant);
     }
+    for (const auto& rod : cp_.rods) {
+      rods_.emplace_back(comm, rod, part.group_mask(rod.group), cp_.material_lattice_constant,
+                         view.view(part.engine()));
+    }
   }
 
   // Collective over both programs.
@@ -253,6 +258,7 @@ class DpdPartSampler {
     if (tension_) sample_tension(n);
     if (volume_) volume_->sample(static_cast<double>(n) * cp_.time_step, v);
     for (auto& neck : necks_) neck.sample(static_cast<double>(n) * cp_.time_step, v);
+    for (auto& rod : rods_) rod.sample(static_cast<double>(n) * cp_.time_step, v);
     if (cp_.opening) {
       const auto mine = probes_.opening_moments(v);
       opening_t_.push_back(static_cast<double>(n) * cp_.time_step);
@@ -265,6 +271,7 @@ class DpdPartSampler {
     if (cp_.opening && !opening_.empty()) report_opening(r, opening_t_, opening_);
     if (volume_) volume_->report(r);
     for (const auto& neck : necks_) neck.report(r, cp_.neck_stable_time);
+    for (const auto& rod : rods_) rod.report(r);
   }
   void report_tension(StageResults& r) const {
     if (tension_) tension_->report(r);
@@ -273,6 +280,7 @@ class DpdPartSampler {
     if (tension_) tension_->save(a);
     if (volume_) volume_->save(a);
     for (const auto& neck : necks_) neck.save(a);
+    for (const auto& rod : rods_) rod.save(a);
     a.put("opening/time", opening_t_);
     a.put("opening/value", opening_);
   }
@@ -280,6 +288,7 @@ class DpdPartSampler {
     if (tension_) tension_->load(a);
     if (volume_) volume_->load(a);
     for (auto& neck : necks_) neck.load(a);
+    for (auto& rod : rods_) rod.load(a);
     opening_t_ = a.get("opening/time");
     opening_ = a.get("opening/value");
   }
@@ -306,6 +315,7 @@ class DpdPartSampler {
   std::optional<TensionSeries> tension_;
   std::optional<BlockVolumeProbe> volume_;
   std::vector<NeckProbe> necks_;
+  std::vector<RodProbe> rods_;
   std::vector<double> opening_t_, opening_;
 };
 

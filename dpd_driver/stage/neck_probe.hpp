@@ -1,11 +1,6 @@
-// The neck between two sintering bodies (seed §6.4): the smallest diameter
-// of the bodies' cross-section perpendicular to the line through their
-// centres of mass, between the two centres. The cross-section is counted in
-// slabs one plane spacing (a/2) thick along that line; a slab's area is its
-// particles' volume (a³/4 each) over its thickness, and its diameter that
-// of the circle of the same area. The neck is the narrowest slab in the
-// middle half of the line (where the two bodies meet; the bodies' own
-// far sides are wider); 0 while some slab there is empty (no contact).
+// The neck between two sintering bodies of the DPD part over time, by the
+// rule of pbms/analysis/neck_width.hpp (seed §6.4), summed over the part's
+// ranks.
 #pragma once
 
 #include <mpi.h>
@@ -14,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pbms/analysis/neck_history.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
 #include "pbms/io/checkpoint_archive.hpp"
@@ -30,19 +26,20 @@ class NeckProbe {
 
   // Collective over the part's ranks.
   void sample(double t, const coupling::ParticleView& now);
-  // The table neck_<name> (time, width, centre distance) and the scalars
-  // neck_width_<name> (mean over the last `stable_time`), neck_final_<name>
-  // and contact_time_<name> (the first sample with a neck; absent if none).
+  // See analysis::NeckHistory::report.
   void report(StageResults& r, double stable_time) const;
   void save(CheckpointArchive& a) const;
   void load(const CheckpointArchive& a);
 
  private:
+  // Collective: the closest approach of the two bodies' members.
+  [[nodiscard]] double closest(const coupling::ParticleView& now) const;
+
   MPI_Comm comm_;
-  coupling::NeckPair spec_;
   std::uint32_t first_, second_;
+  int rod_axis_;
   double a_;
-  std::vector<double> time_, width_, distance_;
+  analysis::NeckHistory history_;
 };
 
 }  // namespace pbms::dpd

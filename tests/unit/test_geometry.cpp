@@ -116,6 +116,11 @@ TEST(GeometryRegion, CurvedSurfacesAreClosedAndAxialFacesHalfOpen) {
   EXPECT_TRUE(s.contains({1.0, 2.0, 1.0}));
   EXPECT_FALSE(s.contains({3.0 + 1e-12, 2.0, 3.0}));
   EXPECT_EQ(s.bounds(), (Box{{-1.0, 0.0, 1.0}, {3.0, 4.0, 5.0}}));
+  // A lattice site at the radius in exact arithmetic is inside even where
+  // floating point puts it a rounding beyond (72.3 - 61.455 > 3 x 3.615).
+  const double a = 3.615;
+  ASSERT_GT(20 * a - 17 * a, 3 * a);
+  EXPECT_TRUE(SphereRegion({17 * a, 0.0, 0.0}, 3 * a).contains({20 * a, 0.0, 0.0}));
 
   // Along y, so centre is (x, z).
   const CylinderRegion c(Axis::kY, {1.0, 3.0}, 0.5, 0.0, 2.0);

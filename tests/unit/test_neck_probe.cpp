@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "pbms/analysis/neck_width.hpp"
 #include "stage/neck_probe.hpp"
 
 using namespace pbms;
@@ -79,4 +80,45 @@ TEST(NeckProbe, ABarBetweenTheBallsIsTheNeck) {
     return distance(p, l) <= 4 * kA || distance(p, r) <= 4 * kA || bar;
   });
   EXPECT_NEAR(neck_of(body) / (2 * R), 1.0, 0.1);
+}
+
+// md_driver measures its atoms by the one-pass form of the same rule: on the
+// same members it gives the probe's neck exactly, and an atomic crystal
+// (lattice constant a/2, every length halved) has half the neck.
+TEST(NeckProbe, AtomsAreMeasuredByTheSameRule) {
+  const coupling::Vec3 l{-5 * kA + 0.5 * kA, 0.5 * kA, 0.5 * kA},
+      r{5 * kA + 0.5 * kA, 0.5 * kA, 0.5 * kA};
+  const Body body([&](const coupling::Vec3& p) {
+    const bool bar = p[0] > l[0] && p[0] < r[0] && std::hypot(p[1] - l[1], p[2] - l[2]) <= 1.7 * kA;
+    return distance(p, l) <= 4 * kA || distance(p, r) <= 4 * kA || bar;
+  });
+  std::vector<int> which;
+  std::vector<std::array<double, 3>> half;
+  for (std::size_t i = 0; i < body.x.size(); ++i) {
+    which.push_back(body.groups[i] == 1U ? 0 : 1);
+    half.push_back({0.5 * body.x[i][0], 0.5 * body.x[i][1], 0.5 * body.x[i][2]});
+  }
+  const double probe = neck_of(body);
+  ASSERT_GT(probe, 0.0);
+  const auto particles = analysis::neck_between(body.x, which, kA);
+  EXPECT_EQ(particles.width, probe);
+  const auto atoms = analysis::neck_between(half, which, 0.5 * kA);
+  EXPECT_NEAR(atoms.width, 0.5 * probe, 1e-12 * probe);
+  EXPECT_NEAR(atoms.centre_distance, 0.5 * particles.centre_distance, 1e-12 * probe);
+  // Joined: nearest neighbours across the join.
+  EXPECT_NEAR(particles.closest, kA / std::sqrt(2.0), 1e-9);
+}
+
+// Balls of radius 4 a with centres 9 a apart on a lattice line: their
+// poles are a lattice constant apart, the closest approach; they do not
+// touch (1.1 a/√2), and beyond two lattice constants the approach is capped.
+TEST(NeckProbe, ClosestApproachOfBallsApart) {
+  const coupling::Vec3 l{-4.0 * kA, 0.0, 0.0}, r{5.0 * kA, 0.0, 0.0}, far{7.0 * kA, 0.0, 0.0};
+  const auto ball = [](const coupling::Vec3& c) {
+    return Body([&](const coupling::Vec3& p) { return distance(p, c) <= 4 * kA + 1e-9; }).x;
+  };
+  EXPECT_NEAR(analysis::closest_approach(ball(l), ball(r), analysis::closest_reach(kA)), kA, 1e-9);
+  EXPECT_GT(kA, analysis::touch_distance(kA));
+  EXPECT_EQ(analysis::closest_approach(ball(l), ball(far), analysis::closest_reach(kA)),
+            analysis::closest_reach(kA));
 }

@@ -86,6 +86,14 @@ struct VolumeProbe {
 struct NeckPair {
   std::string name;
   std::string first, second;
+  int second_rod_axis = -1;  // 0..2: `second` is a rod along that axis
+};
+
+// A rod whose bend is followed (the `rods` probe).
+struct RodBend {
+  std::string name;
+  std::string group;
+  int axis = 2;
 };
 
 struct ConcurrentParams {
@@ -125,6 +133,7 @@ struct ConcurrentParams {
   std::optional<VolumeProbe> volume;
   std::vector<NeckPair> necks;
   double neck_stable_time = 20.0;  // ps: neck_width_<name> averages the last this much
+  std::vector<RodBend> rods;
 
   // Reads a `concurrent` stage's validated parameters (metal units) and
   // its dpd_mesoparticle material.
