@@ -233,6 +233,18 @@ void BodiesStage::run(StageContext& ctx) {
   set_pair_style(lmp, mat);
   lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian", s.temperature,
                           lammps_seed(ctx.seed(), 11)));
+  // Each body starts at rest as a whole, as an equilibrated DPD piece does:
+  // drawn velocities leave every body a net drift (sqrt(kT/M), 0.02 Å/ps a
+  // component for 8,589 atoms), which over 100 ps can carry two spheres
+  // a few ångström apart before they touch.
+  int64_t first = 1;
+  for (std::size_t b = 0; b < s.names.size(); ++b) {
+    const auto n = std::count(atoms.body.begin(), atoms.body.end(), static_cast<int>(b));
+    lmp.command(fmt::format("group body{} id {}:{}", b, first, first + n - 1));
+    lmp.command(fmt::format("velocity body{} zero linear", b));
+    lmp.command(fmt::format("velocity body{} zero angular", b));
+    first += n;
+  }
   lmp.command(fmt::format("fix nvt all nvt temp {0} {0} {1}", s.temperature, s.tdamp));
   lmp.command(fmt::format("timestep {}", s.dt));
   lmp.command("thermo_style custom step temp pe");
