@@ -212,19 +212,10 @@ void write_data(const std::filesystem::path& file, const Atoms& atoms, const MdM
   if (!out) throw StageFailure(fmt::format("could not write {}", file.string()));
 }
 
-}  // namespace
-
-void BodiesStage::run(StageContext& ctx) {
-  const BodiesParams s = BodiesParams::from_yaml(ctx.params());
-  const MdMaterial mat = material_of(ctx, s.material);
-  const double a = s.lattice_constant.value_or(mat.lattice_constant);
-  const Atoms atoms = atoms_of(s, mat, a);
-  check_apart(s, atoms, 0.5 * a / std::sqrt(2.0));
-  const auto data = ctx.stage_dir() / "bodies.data";
-  if (ctx.rank() == 0) write_data(data, atoms, mat);
-  MPI_Barrier(ctx.comm());
-
-  Lammps lmp(ctx.comm(), ctx.stage_dir() / "bodies.log");
+// The LAMMPS set-up: the atoms from `data`, the potential, velocities at
+// the temperature with each body at rest, Nose-Hoover NVT.
+void start_lammps(Lammps& lmp, const BodiesParams& s, const Atoms& atoms, const MdMaterial& mat,
+                  const std::filesystem::path& data, uint64_t seed) {
   lmp.command("units metal");
   lmp.command("atom_style atomic");
   lmp.command("atom_modify map array");
@@ -232,7 +223,7 @@ void BodiesStage::run(StageContext& ctx) {
   lmp.command("read_data " + data.string());
   set_pair_style(lmp, mat);
   lmp.command(fmt::format("velocity all create {} {} mom yes rot yes dist gaussian", s.temperature,
-                          lammps_seed(ctx.seed(), 11)));
+                          lammps_seed(seed, 11)));
   // Each body starts at rest as a whole, as an equilibrated DPD piece does:
   // drawn velocities leave every body a net drift (sqrt(kT/M), 0.02 Å/ps a
   // component for 8,589 atoms), which over 100 ps can carry two spheres
@@ -249,35 +240,84 @@ void BodiesStage::run(StageContext& ctx) {
   lmp.command(fmt::format("timestep {}", s.dt));
   lmp.command("thermo_style custom step temp pe");
   lmp.command("thermo 1000");
+}
 
-  std::vector<analysis::NeckHistory> necks;
-  for (const auto& n : s.necks) necks.emplace_back(n.name, a);
-  std::vector<double> time, temperature, energy;
+// Thermo and necks every sample. LAMMPS gathers the atoms to every rank;
+// rank 0 alone measures the necks and reports.
+class BodiesSampler {
+ public:
+  BodiesSampler(const BodiesParams& s, const Atoms& atoms, double a, bool root)
+      : s_(s), atoms_(atoms), a_(a), root_(root) {
+    for (const auto& n : s.necks) necks_.emplace_back(n.name, a);
+  }
+
+  void sample(Lammps& lmp, double t) {
+    time_.push_back(t);
+    temperature_.push_back(lmp.thermo("temp"));
+    energy_.push_back(lmp.thermo("pe"));
+    if (necks_.empty()) return;
+    const auto flat = lmp.gather("x");
+    if (!root_) return;
+    std::vector<geometry::Vec3> x(atoms_.x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      x[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+    }
+    for (std::size_t k = 0; k < necks_.size(); ++k) {
+      std::vector<int> which(x.size(), -1);
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        if (atoms_.body[i] == s_.necks[k].first) which[i] = 0;
+        if (atoms_.body[i] == s_.necks[k].second) which[i] = 1;
+      }
+      necks_[k].add(t, analysis::neck_between(x, which, a_));
+    }
+  }
+
+  void report(StageResults& r) const {
+    r.add_scalar("atoms", static_cast<double>(atoms_.x.size()), "1");
+    std::vector<double> late;
+    for (std::size_t k = 0; k < time_.size(); ++k) {
+      if (time_[k] >= 0.5 * time_.back()) late.push_back(temperature_[k]);
+    }
+    r.add_scalar("temperature", analysis::mean(late), "K");
+    r.add_column("thermo", "time", "ps", time_);
+    r.add_column("thermo", "temperature", "K", temperature_);
+    r.add_column("thermo", "potential_energy", "eV", energy_);
+    for (const auto& n : necks_) n.report(r, s_.stable_time);
+  }
+
+ private:
+  const BodiesParams& s_;
+  const Atoms& atoms_;
+  double a_;
+  bool root_;
+  std::vector<analysis::NeckHistory> necks_;
+  std::vector<double> time_, temperature_, energy_;
+};
+
+}  // namespace
+
+void BodiesStage::run(StageContext& ctx) {
+  const BodiesParams s = BodiesParams::from_yaml(ctx.params());
+  const MdMaterial mat = material_of(ctx, s.material);
+  const double a = s.lattice_constant.value_or(mat.lattice_constant);
+  const Atoms atoms = atoms_of(s, mat, a);
+  check_apart(s, atoms, 0.5 * a / std::sqrt(2.0));
+  const auto data = ctx.stage_dir() / "bodies.data";
+  if (ctx.rank() == 0) write_data(data, atoms, mat);
+  MPI_Barrier(ctx.comm());
+
+  Lammps lmp(ctx.comm(), ctx.stage_dir() / "bodies.log");
+  start_lammps(lmp, s, atoms, mat, data, ctx.seed());
+  BodiesSampler sampler(s, atoms, a, ctx.rank() == 0);
   TrajectoryRecorder traj(ctx, lmp, "bodies.h5md", s.traj_every, {false, false, false});
-  const int64_t total = steps_for(s.time, s.dt);
   const auto sample = [&](int64_t step) {
     const double t = static_cast<double>(step) * s.dt;
     traj.maybe_write(step, t);
-    if (step % s.every != 0) return;
-    time.push_back(t);
-    temperature.push_back(lmp.thermo("temp"));
-    energy.push_back(lmp.thermo("pe"));
-    if (necks.empty()) return;
-    const auto flat = lmp.gather("x");
-    std::vector<geometry::Vec3> x(atoms.x.size());
-    for (std::size_t i = 0; i < x.size(); ++i)
-      x[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
-    for (std::size_t k = 0; k < necks.size(); ++k) {
-      std::vector<int> which(x.size(), -1);
-      for (std::size_t i = 0; i < x.size(); ++i) {
-        if (atoms.body[i] == s.necks[k].first) which[i] = 0;
-        if (atoms.body[i] == s.necks[k].second) which[i] = 1;
-      }
-      necks[k].add(t, analysis::neck_between(x, which, a));
-    }
+    if (step % s.every == 0) sampler.sample(lmp, t);
   };
   lmp.command("run 0 post no");  // thermo and positions at step 0
   sample(0);
+  const int64_t total = steps_for(s.time, s.dt);
   const int64_t chunk = std::gcd(s.every, s.traj_every > 0 ? s.traj_every : s.every);
   lmp.run(total, chunk, [&](int64_t done) {
     sample(done);
@@ -289,16 +329,7 @@ void BodiesStage::run(StageContext& ctx) {
   auto& r = ctx.results();
   r.files.push_back(ctx.stage() + "/bodies.in");
   if (traj.enabled()) r.files.push_back(traj.relative_path());
-  r.add_scalar("atoms", static_cast<double>(atoms.x.size()), "1");
-  std::vector<double> late;
-  for (std::size_t k = 0; k < time.size(); ++k) {
-    if (time[k] >= 0.5 * time.back()) late.push_back(temperature[k]);
-  }
-  r.add_scalar("temperature", analysis::mean(late), "K");
-  r.add_column("thermo", "time", "ps", time);
-  r.add_column("thermo", "temperature", "K", temperature);
-  r.add_column("thermo", "potential_energy", "eV", energy);
-  for (const auto& n : necks) n.report(r, s.stable_time);
+  sampler.report(r);
 }
 
 }  // namespace pbms::md

@@ -6,8 +6,6 @@
 #include <mpi.h>
 
 #include <cstdint>
-#include <string>
-#include <vector>
 
 #include "pbms/analysis/neck_history.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
