@@ -2,9 +2,13 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "cu_cg_morse.hpp"
 #include "engine/dpd_engine.hpp"
@@ -40,6 +44,61 @@ std::unique_ptr<DpdEngine> crystal(int cells, double cutoff) {
                                      std::move(c.particles));
 }
 
+std::unique_ptr<DpdEngine> nve_crystal(double temperature, unsigned seed, double dt) {
+  FccCrystal c = fcc_crystal(4, 4, 4, kLattice, kMass);
+  assign_maxwell_boltzmann_velocities(c.particles, temperature, seed);
+  DpdIntegratorSettings s = thermostat(cu_cg_morse_parameters().cutoff);
+  s.dt = dt;
+  s.friction.gamma = 0.0;
+  return std::make_unique<DpdEngine>(MPI_COMM_SELF, c.box, cu_cg_morse(), s,
+                                     std::move(c.particles));
+}
+
+// Total energy at each step's start, for a crystal advanced by velocity
+// Verlet (no grid) or by the grid step with cell edge h. The grid step
+// keeps half-step velocities (v += dt a, then x += dt v: leapfrog), so its
+// kinetic energy at x_n is that of the mean of the velocities before and
+// after the step; velocity Verlet's is its own.
+std::vector<double> energy_series(DpdEngine& e, DpdGridStep* grid, int steps) {
+  std::vector<double> energy;
+  for (int n = 0; n < steps; ++n) {
+    const ThermoState t = e.thermo(true);
+    const std::vector<Vec3> before(e.particles().v.begin(), e.particles().v.begin() + e.owned());
+    if (grid != nullptr) {
+      grid->step();
+    } else {
+      e.step();
+    }
+    double kinetic = t.kinetic;
+    if (grid != nullptr) {
+      kinetic = 0.0;
+      for (std::size_t i = 0; i < e.owned(); ++i) {
+        for (std::size_t a = 0; a < 3; ++a) {
+          const double v = 0.5 * (before[i][a] + e.particles().v[i][a]);
+          kinetic += 0.5 * e.particles().mass(i) * v * v * units::kMvv2e;
+        }
+      }
+    }
+    energy.push_back(t.potential + kinetic);
+  }
+  return energy;
+}
+
+// The drift of a series over its whole span: its least-squares slope times
+// the span, which the series' bounded oscillation does not bias.
+double drift(const std::vector<double>& y) {
+  const double n = static_cast<double>(y.size());
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double x = static_cast<double>(i);
+    sx += x;
+    sy += y[i];
+    sxx += x * x;
+    sxy += x * y[i];
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx) * (n - 1.0);
+}
+
 std::array<double, 3> momentum(const DpdEngine& e) {
   std::array<double, 3> p{0.0, 0.0, 0.0};
   for (std::size_t i = 0; i < e.owned(); ++i)
@@ -65,11 +124,91 @@ TEST(DpdGridStep, ThermostattedCrystalKeepsItsMomentum) {
   for (int n = 0; n < 200; ++n) grid.step();
   const auto p = momentum(*engine);
   for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(p[a] - p0[a]), 1e-12 * scale) << a;
-  // The crystal stays a crystal at about the bath temperature.
-  const ThermoState t = engine->thermo(false);
-  EXPECT_GT(t.temperature, 150.0);
-  EXPECT_LT(t.temperature, 450.0);
+  // The temperature is held by BerendsenHoldsTheGridCrystalAtItsTemperature: the pair
+  // thermostat's gamma of 0.2 g/mol/ps relaxes over nanoseconds.
   EXPECT_EQ(engine->step_count(), 200);
+}
+
+// Where the grid step's energy goes (issue 32, item 5), thermostat off and
+// FLIP at 1, 1,000 steps of 0.01 ps from the lattice at 298 K, three seeds.
+// When no two particles share a node (h = a/5: each particle's eight nodes
+// are its own), the grid step is velocity Verlet in leapfrog form and its
+// drift is DPD-only's, to round-off. Where they share nodes it loses energy:
+// measured 0.1 % of it at h = a/4, 10 % at a/3, 35 % at a/2 and 69 % at
+// a/2.5 over 10 ps. At a/2 the loss is the step's time-integration error,
+// not the grid's resolution: the kick and the move take the shape functions
+// at the step's start, so the scheme is first order where they change, and
+// the loss falls about as dt does (halving dt takes 3.59 eV to 2.17 eV over
+// the same 10 ps; 1.21 and 0.64 eV for dt/4 and dt/8). docs/dpd-driver.md.
+TEST(DpdGridStep, EnergyDriftsAsDpdOnlyWhereNoTwoParticlesShareANode) {
+  constexpr int kSteps = 1000;
+  double widest_dpd = 0.0;
+  for (const unsigned seed : {7U, 8U, 9U}) {
+    auto reference = nve_crystal(298.0, seed, 0.01);
+    const double dpd = drift(energy_series(*reference, nullptr, kSteps));
+    auto engine = nve_crystal(298.0, seed, 0.01);
+    DpdGridStep unshared(*engine, {kLattice / 5.0, 1.0, 4, {}});
+    const double grid = drift(energy_series(*engine, &unshared, kSteps));
+    std::printf("seed %u, energy drift over 10 ps: DPD-only %+.5f eV, grid h = a/5 %+.5f eV\n",
+                seed, dpd, grid);
+    EXPECT_LE(std::abs(grid), 2.0 * std::abs(dpd) + 1e-9) << seed;
+    widest_dpd = std::max(widest_dpd, std::abs(dpd));
+  }
+  // At the cell edge the concurrent and grid configs use (a/2) the loss is
+  // far beyond DPD-only's drift, and falls with the time step over the same
+  // simulated time: first order (ratio 0.5) up to the next order's share.
+  std::array<double, 2> loss{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double dt = k == 0 ? 0.01 : 0.005;
+    auto engine = nve_crystal(298.0, 7, dt);
+    DpdGridStep shared(*engine, {kLattice / 2.0, 1.0, 4, {}});
+    loss[k] = -drift(energy_series(*engine, &shared, kSteps * static_cast<int>(k + 1)));
+  }
+  std::printf("h = a/2, energy lost over 10 ps: %.3f eV (dt 0.01 ps), %.3f eV (dt 0.005 ps)\n",
+              loss[0], loss[1]);
+  EXPECT_GT(loss[0], 100.0 * widest_dpd);
+  EXPECT_GT(loss[1] / loss[0], 0.45);
+  EXPECT_LT(loss[1] / loss[0], 0.75);
+}
+
+// With the thermostat a concurrent stage's DPD part takes (Berendsen about
+// the mean velocity, the default coupling time of 0.1 ps) the grid crystal
+// at h = a/2 holds 298 K to 3 % over the last half of 1,000 steps, side by
+// side with DPD-only under the same thermostat; the thermostat puts back
+// what the grid step loses. Started at 596 K on the lattice (half of it
+// goes into the potential energy). Three seeds. With 0.5 ps the grid
+// crystal held 279 K (-6 %).
+TEST(DpdGridStep, BerendsenHoldsTheGridCrystalAtItsTemperature) {
+  constexpr int kSteps = 1000;
+  constexpr double kTau = 0.1;
+  for (const unsigned seed : {7U, 8U, 9U}) {
+    std::array<double, 2> mean{};
+    std::array<double, 2> work{};
+    for (std::size_t on_grid = 0; on_grid < 2; ++on_grid) {
+      auto engine = nve_crystal(2.0 * 298.0, seed, 0.01);
+      std::unique_ptr<DpdGridStep> grid;
+      if (on_grid != 0)
+        grid = std::make_unique<DpdGridStep>(*engine, DpdGridSettings{kLattice / 2.0, 1.0, 4, {}});
+      for (int n = 1; n <= kSteps; ++n) {
+        if (grid) {
+          grid->step();
+        } else {
+          engine->step();
+        }
+        const double before = engine->thermo(false).kinetic;
+        engine->berendsen(298.0, kTau, true);
+        const ThermoState t = engine->thermo(false);
+        work[on_grid] += t.kinetic - before;
+        if (n > kSteps / 2) mean[on_grid] += t.temperature / (kSteps / 2);
+      }
+    }
+    std::printf(
+        "seed %u, mean temperature over the last 5 ps: DPD-only %.1f K, grid h = a/2 %.1f K; "
+        "thermostat's work %+.2f and %+.2f eV\n",
+        seed, mean[0], mean[1], work[0], work[1]);
+    EXPECT_NEAR(mean[0], 298.0, 0.03 * 298.0) << seed;
+    EXPECT_NEAR(mean[1], 298.0, 0.03 * 298.0) << seed;
+  }
 }
 
 // A free rigid body (a flyer) moves its nodes at its velocity, and those
