@@ -14,7 +14,13 @@ std::vector<config::Param> SuttonChen::params() {
           Param::real("n", Dimension::kNone, "Pair repulsion exponent").require().above(0),
           Param::real("m", Dimension::kNone, "Density exponent").require().above(0),
           Param::real("c", Dimension::kNone, "Embedding weight").require().above(0),
-          pair_cutoff_param()};
+          pair_cutoff_param(),
+          Param::real("p", Dimension::kNone,
+                      "Embedding exponent: the embedding energy is -eps c rho^p; 0.5 is Sutton "
+                      "and Chen's square root")
+              .def(0.5)
+              .above(0)
+              .below(1)};
 }
 
 std::unique_ptr<PairStyle> SuttonChen::create(const PairStyleParameters& params) {
@@ -25,15 +31,30 @@ std::unique_ptr<PairStyle> SuttonChen::create(const PairStyleParameters& params)
   const double m = read.required_positive("m");
   const double c = read.required_positive("c");
   const double cutoff = read.required_positive("cutoff");
+  const double p = read.optional("p", 0.5);
   read.reject_unknown();
-  return std::make_unique<SuttonChen>(epsilon, a, n, m, c, cutoff);
+  return std::make_unique<SuttonChen>(epsilon, a, n, m, c, cutoff, p);
 }
 
-SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff)
-    : kernel_{epsilon, a * a, n, m, c, cutoff * cutoff, nullptr}, cutoff_(cutoff) {
+SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff,
+                       double p)
+    : kernel_{epsilon, a * a, n, m, c, cutoff * cutoff, nullptr}, cutoff_(cutoff), p_(p) {
   if (!(epsilon > 0.0 && a > 0.0 && n > 0.0 && m > 0.0 && c > 0.0 && cutoff > 0.0)) {
     throw Error("pair style sutton_chen: epsilon, a, n, m, c and cutoff must be > 0");
   }
+  if (!(p > 0.0 && p < 1.0)) {
+    throw Error("pair style sutton_chen: the embedding exponent p must lie in (0, 1)");
+  }
+}
+
+double SuttonChen::embedding(double rho) const {
+  return p_ == 0.5 ? std::sqrt(rho) : std::pow(rho, p_);
+}
+
+// An isolated particle (ρ = 0) has no pair that would read its slope.
+double SuttonChen::embedding_slope(double rho, double embedded) const {
+  if (!(rho > 0.0)) return 0.0;
+  return p_ == 0.5 ? 0.5 / embedded : p_ * embedded / rho;
 }
 
 // Partners' neighbours are not listed, so their own sums are partial. Each
@@ -42,7 +63,7 @@ SuttonChen::SuttonChen(double epsilon, double a, double n, double m, double c, d
 void SuttonChen::give_partners_neighbours_density(const HalfNeighbourList& list,
                                                   const DpdParticles& particles) {
   const std::size_t from = list.partners_from();
-  const std::size_t size = half_inverse_sqrt_density_.size();
+  const std::size_t size = embedding_slope_.size();
   if (from >= size) return;
   std::vector<double> sum(size - from, 0.0);
   std::vector<int> count(size - from, 0);
@@ -53,13 +74,13 @@ void SuttonChen::give_partners_neighbours_density(const HalfNeighbourList& list,
       if (j < from) continue;
       const Vec3 d = list.separation(particles.x.data(), i, entries[k]);
       if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= kernel_.cutoff_squared) continue;
-      sum[j - from] += half_inverse_sqrt_density_[i];
+      sum[j - from] += embedding_slope_[i];
       ++count[j - from];
     }
   }
   for (std::size_t j = from; j < size; ++j) {
     const int c = count[j - from];
-    half_inverse_sqrt_density_[j] = c > 0 ? sum[j - from] / c : 0.0;
+    embedding_slope_[j] = c > 0 ? sum[j - from] / c : 0.0;
   }
 }
 
@@ -87,20 +108,19 @@ PairResult SuttonChen::compute_forces(DpdParticles& particles, const HalfNeighbo
 
   // An owned density is complete now (its ghost partners were listed); a
   // ghost's is not, and its owner sends the g the force pass needs.
-  half_inverse_sqrt_density_.assign(particles.size(), 0.0);
-  double embedding = 0.0;
+  embedding_slope_.assign(particles.size(), 0.0);
+  double embedded_sum = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
-    const double root = std::sqrt(density_[i]);
-    embedding += root;
-    // An isolated particle has no pair that would read its g.
-    half_inverse_sqrt_density_[i] = root > 0.0 ? 0.5 / root : 0.0;
+    const double embedded = embedding(density_[i]);
+    embedded_sum += embedded;
+    embedding_slope_[i] = embedding_slope(density_[i], embedded);
   }
-  if (ghost_forward_) ghost_forward_(half_inverse_sqrt_density_);
+  if (ghost_forward_) ghost_forward_(embedding_slope_);
   give_partners_neighbours_density(list, particles);
-  kernel_.half_inverse_sqrt_density = half_inverse_sqrt_density_.data();
+  kernel_.embedding_slope = embedding_slope_.data();
 
   PairResult result = pair_force_loop(kernel_, particles, list, tally, friction);
-  if (tally != Tally::kForcesOnly) result.energy -= kernel_.epsilon * kernel_.c * embedding;
+  if (tally != Tally::kForcesOnly) result.energy -= kernel_.epsilon * kernel_.c * embedded_sum;
   return result;
 }
 

@@ -1,11 +1,16 @@
 // Sutton–Chen many-body potential (Sutton & Chen 1990):
-//   E = ε [ Σ_{i<j} (a/r_ij)^n − c Σ_i √ρ_i ],   ρ_i = Σ_{j≠i} (a/r_ij)^m,
-// every sum over pairs closer than the cutoff. The embedding term lets a
-// mesoparticle model have C12 ≠ C44, which no pair potential can.
+//   E = ε [ Σ_{i<j} (a/r_ij)^n − c Σ_i ρ_i^p ],   ρ_i = Σ_{j≠i} (a/r_ij)^m,
+// every sum over pairs closer than the cutoff; p = 1/2 (the default) is
+// Sutton and Chen's square root. The embedding term lets a mesoparticle
+// model have C12 ≠ C44, which no pair potential can. The exponent p sets
+// the embedding's curvature against its slope: in a cubic crystal the
+// curvature reaches only the bulk modulus (a shear at constant volume
+// leaves ρ unchanged to first order), so a free p lets a fit move B apart
+// from C' and C44, which nickel's constants need (docs/hierarchy.md).
 //
 // Forces are pairwise central, so the pair loop and its virial apply:
 //   −(dE/dr_ij)/r_ij = ε [n (a/r)^n − c m (a/r)^m (g_i + g_j)] / r²,
-// with g_i = 1 / (2 √ρ_i), after a first pass over the list has summed ρ.
+// with g_i = p ρ_i^(p−1), after a first pass over the list has summed ρ.
 // Another program's points paired with the particles (a concurrent run's
 // partners) are no list rows, so their sums would be partial: each takes the
 // mean g of the particles it pairs with, which share its crystal.
@@ -32,7 +37,7 @@ class SuttonChen final : public PairStyle {
     double m;
     double c;
     double cutoff_squared;
-    const double* half_inverse_sqrt_density;  // g_i, one per particle
+    const double* embedding_slope;  // g_i, one per particle
 
     void evaluate(std::size_t i, std::size_t j, double r2, double& energy,
                   double& force_over_r) const {
@@ -41,21 +46,19 @@ class SuttonChen final : public PairStyle {
       const double rm = std::exp(m * half_log);
       energy = epsilon * rn;  // the embedding energy is summed per particle
       force_over_r =
-          epsilon *
-          (n * rn - c * m * rm * (half_inverse_sqrt_density[i] + half_inverse_sqrt_density[j])) /
-          r2;
+          epsilon * (n * rn - c * m * rm * (embedding_slope[i] + embedding_slope[j])) / r2;
     }
   };
 
   // Parameters: epsilon (eV, > 0), a (Å, > 0), n > 0, m > 0, c (> 0),
-  // cutoff (Å, > 0).
+  // cutoff (Å, > 0), p (optional, 0 < p < 1, default 1/2).
   static std::unique_ptr<PairStyle> create(const PairStyleParameters& params);
   // The keys of a potential map of this style, and what it computes.
   static std::vector<config::Param> params();
   static constexpr std::string_view kDoc =
-      "eps [sum (a/r)^n - c sum_i sqrt(rho_i)], rho_i = sum_j (a/r_ij)^m";
+      "eps [sum (a/r)^n - c sum_i rho_i^p], rho_i = sum_j (a/r_ij)^m, p = 1/2 by default";
 
-  SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff);
+  SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff, double p = 0.5);
 
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
@@ -71,10 +74,16 @@ class SuttonChen final : public PairStyle {
   void give_partners_neighbours_density(const HalfNeighbourList& list,
                                         const DpdParticles& particles);
 
+  // ρ^p and dρ^p/dρ; the square root where p = 1/2, so that Sutton and
+  // Chen's own form runs as fast and to the same bits as before p existed.
+  [[nodiscard]] double embedding(double rho) const;
+  [[nodiscard]] double embedding_slope(double rho, double embedded) const;
+
   Kernel kernel_;
   double cutoff_;
+  double p_;
   std::vector<double> density_;
-  std::vector<double> half_inverse_sqrt_density_;
+  std::vector<double> embedding_slope_;
 };
 
 }  // namespace pbms::dpd

@@ -144,8 +144,8 @@ std::unique_ptr<PairStyle> make_morse(bool shift) {
 std::unique_ptr<PairStyle> make_lj_nm() {
   return std::make_unique<LjNm>(0.4, 5.11, 12.0, 6.0, kCutoff, true);
 }
-std::unique_ptr<PairStyle> make_sutton_chen() {
-  return std::make_unique<SuttonChen>(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff);
+std::unique_ptr<PairStyle> make_sutton_chen(double p = 0.5) {
+  return std::make_unique<SuttonChen>(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff, p);
 }
 
 // A Morse table from 3 to 8 Å: rows every 0.01 Å, one row at 3.005 Å (so the
@@ -184,6 +184,7 @@ TEST(DpdPairStyles, ForcesAreMinusTheEnergyGradient) {
   expect_forces_are_minus_energy_gradient(*make_sutton_chen(), periodic_box(), 4);
   expect_forces_are_minus_energy_gradient(*make_table(false), periodic_box(), 5);
   expect_forces_are_minus_energy_gradient(*make_table(true), periodic_box(), 6);
+  expect_forces_are_minus_energy_gradient(*make_sutton_chen(0.7), periodic_box(), 7);
 }
 
 TEST(DpdPairStyles, VirialIsTheSumOfPairOuterProducts) {
@@ -197,6 +198,7 @@ TEST(DpdPairStyles, PeriodicVirialIsMinusTheStrainDerivativeOfEnergy) {
   expect_virial_is_minus_strain_derivative(*make_morse(true));
   expect_virial_is_minus_strain_derivative(*make_lj_nm());
   expect_virial_is_minus_strain_derivative(*make_sutton_chen());
+  expect_virial_is_minus_strain_derivative(*make_sutton_chen(0.7));
   expect_virial_is_minus_strain_derivative(*make_table(false));
 }
 
@@ -297,6 +299,11 @@ TEST(DpdPairStyles, SuttonChenDimerEnergy) {
   const double rho = std::pow(3.61 / r, 6.0);
   EXPECT_NEAR(dimer(sc, r).first, 0.0124 * (std::pow(3.61 / r, 9.0) - 39.4 * 2.0 * std::sqrt(rho)),
               1e-13);
+  // Another embedding exponent: each atom of the dimer embeds rho^p.
+  SuttonChen embedded(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff, 0.7);
+  EXPECT_NEAR(dimer(embedded, r).first,
+              0.0124 * (std::pow(3.61 / r, 9.0) - 39.4 * 2.0 * std::pow(rho, 0.7)), 1e-13);
+  EXPECT_THROW(SuttonChen(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff, 1.0), pbms::Error);
 }
 
 // A concurrent run's MPM points pair with the DPD particles but are no list
