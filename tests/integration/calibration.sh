@@ -2,8 +2,9 @@ source "$(dirname "$0")/lib.sh"
 # configs/calibration.yaml on 2 + 2 ranks: DPD tension -> J2 MPM material by
 # {from:} -> MPM tension of the same rod, measured by the same rules. A
 # consistency check of the hand-off (the MPM material is made from the DPD
-# rod's reading); the physics check beside it is mpm_rod_law, the MPM rod
-# against its own constitutive law.
+# rod's reading), validation label since 2026-12-05; the physics check
+# beside it in the default suite is mpm_rod_law, the MPM rod against its
+# own constitutive law.
 # Asserted: both rods report a gauge (the Cauchy stress and strain of
 # their middle 90 A, analysis::GaugeSection) and the MPM material holds the
 # DPD gauge's E, nu and density (its automatic time step, 0.5 h / c with c

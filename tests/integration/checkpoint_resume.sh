@@ -33,7 +33,15 @@ source "$(dirname "$0")/lib.sh"
 # SIGTERM to every task of the job (Slurm's way) during md_tension: the
 # same, and the resume is bitwise up to the stop and round-off after.
 # Then a resume with a changed key is refused, naming it.
+#
+# The argument picks the cases: dpd_mpm (the default suite's
+# checkpoint_resume: dpd_run, mpm_run, the signals to ./pbms run and the
+# refusal), md (checkpoint_resume_md, validation label: md_isotherm,
+# md_elastic, md_tension and the signal to every task), or all.
 export PBMS_SKIP_BUILD=1
+part="${1:-all}"
+runs_part() { [ "$part" = all ] || [ "$part" = "$1" ]; }
+case "$part" in all | dpd_mpm | md) ;; *) fail "unknown part '$part' (all, dpd_mpm or md)" ;; esac
 base="$(dirname "$0")/configs/checkpoint_dpd.yaml"
 
 "$PY" - "$base" <<'PYEOF'
@@ -229,6 +237,7 @@ sys.exit(1 if bad else 0)
 PYEOF
 }
 
+if runs_part dpd_mpm; then
 for spec in pull:pull dpde:dpde impact:impact gridpull:gridpull; do
   case=${spec%%:*} stage=${spec##*:}
   echo "== $case"
@@ -269,6 +278,7 @@ PYEOF
   compare "${case}_whole" "${case}_other_ranks" disks 1e-10 1e-10 ||
     fail "$case: resumed on 2 ranks, beyond round-off"
 done
+fi
 
 # An MD stage with a checkpoint after each finished point: killed while the
 # second is written, resumed from the first, and compared with the whole
@@ -327,6 +337,7 @@ signalled_resumed() {
   grep -o "goes on from its checkpoint .*" "${name}_resumed.out" | sed 's/^/  /'
 }
 
+if runs_part md; then
 echo "== md_isotherm: killed while the checkpoint after its second point is written"
 "$PBMS" run md_whole.yaml > md_whole.out 2>&1 || { cat md_whole.out; fail "md: the whole run"; }
 mapfile -t md_steps < <(grep -o "checkpoint after step [0-9]*" runs/md_whole/log.txt | awk '{print $4}')
@@ -368,7 +379,9 @@ with h5py.File(f"{a}/wire/tension.h5md") as fa, h5py.File(f"{b}/wire/tension.h5m
 print(f"  stopped after step {stop}: frames up to it bitwise: {exact}; later frames within {drift:.1e} A")
 sys.exit(0 if exact and drift < 1e-9 else 1)
 PYEOF
+fi
 
+if runs_part dpd_mpm; then
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
 run="$PWD/runs/pull_signalled"
 signalled_resumed pull_signalled "$run" "step_000000000500:3" \
@@ -387,3 +400,4 @@ if "$PBMS" run pull_killed.yaml --resume > changed.out 2>&1; then fail "a change
 grep -q "stages\[0\].steps: '1000' in the earlier run, '1200' now" changed.out ||
   { cat changed.out; fail "the refusal does not name the changed key"; }
 echo "  refused: $(grep -o "the config has changed since: .* now" changed.out)"
+fi

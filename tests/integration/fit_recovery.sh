@@ -8,7 +8,8 @@ source "$(dirname "$0")/lib.sh"
 # until 2026-12-05) let pass:
 #  - Morse, d0, alpha and r0 free, started 10-20 % away; its r0 bounds let
 #    candidates fall apart, and those are recorded as failed with a reason;
-#  - Sutton-Chen, epsilon, c and n free, from isotherm and elastic constants;
+#  - Sutton-Chen, epsilon, c and n free, from isotherm and elastic constants,
+#    by bobyqa alone (the Morse fit runs crs2 in front of its polish);
 #  - the Morse fit with a small budget on dpd_driver with 1 and 2 ranks
 #    (two one-rank judging groups) gives the same parameters, bit for bit;
 #  - no candidate is judged twice in a row (Levenberg-Marquardt's repeat),

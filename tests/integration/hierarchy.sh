@@ -1,7 +1,8 @@
 source "$(dirname "$0")/lib.sh"
 # configs/hierarchy.yaml end to end (validation label; the default suite has
 # the shorter checks of each link: md_results_cache, fit_recovery,
-# calibration_dpd_to_mpm). MD isotherm and elastic constants at 298 K ->
+# quickstart's fit, mpm_rod_law; calibration_dpd_to_mpm, the hand-off on
+# the Morse rod, is validation too). MD isotherm and elastic constants at 298 K ->
 # Sutton-Chen fit -> DPD elastic constants and tension -> J2 MPM material ->
 # MPM tension. Asserted:
 #  - the fitted model's volume per atom within 0.5 % of MD's at every
