@@ -34,14 +34,15 @@ source "$(dirname "$0")/lib.sh"
 # same, and the resume is bitwise up to the stop and round-off after.
 # Then a resume with a changed key is refused, naming it.
 #
-# The argument picks the cases: dpd_mpm (the default suite's
-# checkpoint_resume: dpd_run, mpm_run, the signals to ./pbms run and the
-# refusal), md (checkpoint_resume_md, validation label: md_isotherm,
-# md_elastic, md_tension and the signal to every task), or all.
+# The argument picks the cases: dpd (the default suite's checkpoint_resume:
+# dpd_run, the signals to ./pbms run and the refusal), mpm_md
+# (checkpoint_resume_mpm_md, validation label: mpm_run, md_isotherm,
+# md_elastic, md_tension and the signal to every task; the default suite
+# resumes MPM points in checkpoint_concurrent), or all.
 export PBMS_SKIP_BUILD=1
 part="${1:-all}"
 runs_part() { [ "$part" = all ] || [ "$part" = "$1" ]; }
-case "$part" in all | dpd_mpm | md) ;; *) fail "unknown part '$part' (all, dpd_mpm or md)" ;; esac
+case "$part" in all | dpd | mpm_md) ;; *) fail "unknown part '$part' (all, dpd or mpm_md)" ;; esac
 base="$(dirname "$0")/configs/checkpoint_dpd.yaml"
 
 "$PY" - "$base" <<'PYEOF'
@@ -237,7 +238,7 @@ sys.exit(1 if bad else 0)
 PYEOF
 }
 
-if runs_part dpd_mpm; then
+if runs_part dpd; then
 for spec in pull:pull dpde:dpde impact:impact gridpull:gridpull; do
   case=${spec%%:*} stage=${spec##*:}
   echo "== $case"
@@ -254,7 +255,9 @@ for spec in pull:pull dpde:dpde impact:impact gridpull:gridpull; do
   compare "${case}_whole" "${case}_one_rank" "$stage" 1e-9 1e-10 ||
     fail "$case: resumed on 1 rank, beyond round-off"
 done
+fi
 
+if runs_part mpm_md; then
 for case in mpm_elastic mpm_j2 mpm_gas; do
   echo "== $case"
   "$PBMS" run "${case}_whole.yaml" > "${case}_whole.out" 2>&1 || { cat "${case}_whole.out"; fail "$case: the whole run"; }
@@ -337,7 +340,7 @@ signalled_resumed() {
   grep -o "goes on from its checkpoint .*" "${name}_resumed.out" | sed 's/^/  /'
 }
 
-if runs_part md; then
+if runs_part mpm_md; then
 echo "== md_isotherm: killed while the checkpoint after its second point is written"
 "$PBMS" run md_whole.yaml > md_whole.out 2>&1 || { cat md_whole.out; fail "md: the whole run"; }
 mapfile -t md_steps < <(grep -o "checkpoint after step [0-9]*" runs/md_whole/log.txt | awk '{print $4}')
@@ -381,7 +384,7 @@ sys.exit(0 if exact and drift < 1e-9 else 1)
 PYEOF
 fi
 
-if runs_part dpd_mpm; then
+if runs_part dpd; then
 echo "== SIGTERM to ./pbms run: a checkpoint at the next step boundary, exit non-zero, resume"
 run="$PWD/runs/pull_signalled"
 signalled_resumed pull_signalled "$run" "step_000000000500:3" \
