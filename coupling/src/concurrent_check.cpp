@@ -299,6 +299,41 @@ void check_opening_off_grips(const config::StageCheck& c) {
 
 }  // namespace
 
+// A strained start needs its ghost forces measured on the unstrained body
+// (an earlier stage); an earlier stage named for them must measure some.
+void check_ghost_forces(const config::StageCheck& c) {
+  const YAML::Node g = c.resolved["ghost_force_correction"];
+  if (!g) return;
+  const YAML::Node raw = c.raw["ghost_force_correction"];
+  const std::string path = c.path + ".ghost_force_correction";
+  if (!g["from_stage"]) {
+    const double window = g["average_time"].as<double>();
+    const double run = c.resolved["steps"].as<double>() * c.resolved["time_step"].as<double>();
+    if (window > run) {
+      c.validator.error(raw["average_time"], path + ".average_time",
+                        fmt::format("{} ps is longer than the stage ({} ps): the dead loads "
+                                    "would never be measured",
+                                    window, run));
+    }
+    const auto e = c.resolved["initial_strain"].as<std::vector<double>>();
+    if (e[0] != 0.0 || e[1] != 0.0 || e[2] != 0.0) {
+      c.validator.error(raw, path,
+                        "with an initial_strain the dead loads must come from_stage (an earlier "
+                        "stage of the unstrained body): measured here, they would hold the "
+                        "strain's own tractions and undo its stress");
+    }
+    return;
+  }
+  const std::string from = g["from_stage"].as<std::string>();
+  const YAML::Node earlier = config::stage_named(c.workflow, from);
+  if (earlier && !earlier["ghost_force_correction"]) {
+    c.validator.error(raw["from_stage"], path + ".from_stage",
+                      fmt::format("stage '{}' measures no ghost forces (it has no "
+                                  "ghost_force_correction)",
+                                  from));
+  }
+}
+
 void check_concurrent_stage(const config::StageCheck& c) {
   check_regions(c);
   check_grid(c);
@@ -308,6 +343,7 @@ void check_concurrent_stage(const config::StageCheck& c) {
   check_grips(c);
   check_opening_off_grips(c);
   check_fit_window(c);
+  check_ghost_forces(c);
 }
 
 }  // namespace pbms::coupling

@@ -1,5 +1,6 @@
 #include "pbms/coupling/concurrent_params.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -51,13 +52,21 @@ bool nests_in(const geometry::Box& inner, const geometry::Box& outer) {
   return within && !(inner == outer);
 }
 
-Solver ConcurrentParams::solver_at(const geometry::Vec3& x) const {
-  const ConcurrentRegion* holder = nullptr;
-  for (const auto& r : regions) {
-    if (!r.region->contains(x)) continue;
-    if (!holder || nests_in(r.region->bounds(), holder->region->bounds())) holder = &r;
+int ConcurrentParams::region_at(const geometry::Vec3& x) const {
+  int holder = -1;
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    if (!regions[k].region->contains(x)) continue;
+    if (holder < 0 || nests_in(regions[k].region->bounds(),
+                               regions[static_cast<std::size_t>(holder)].region->bounds())) {
+      holder = static_cast<int>(k);
+    }
   }
-  return holder ? holder->solver : Solver::kDpd;
+  return holder;
+}
+
+Solver ConcurrentParams::solver_at(const geometry::Vec3& x) const {
+  const int k = region_at(x);
+  return k < 0 ? Solver::kDpd : regions[static_cast<std::size_t>(k)].solver;
 }
 
 std::string ConcurrentParams::part(Solver s) const {
@@ -94,6 +103,15 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
   }
   c.interface_name = p["interface"].as<std::string>();
   c.interface = treatment(c.interface_name);
+  if (const YAML::Node g = p["ghost_force_correction"]) {
+    const double steps = g["average_time"].as<double>() / p["time_step"].as<double>();
+    c.ghost_force_steps = std::max<std::int64_t>(1, std::llround(steps));
+    if (g["from_stage"]) c.ghost_force_stage = g["from_stage"].as<std::string>();
+  }
+  if (const YAML::Node e = p["initial_strain"]) {
+    const auto v = e.as<std::vector<double>>();
+    c.initial_strain = {v[0], v[1], v[2]};
+  }
   c.material = p["material"].as<std::string>();
   c.particle_mass = material["mass"].as<double>();
   c.material_lattice_constant = material["lattice_constant"].as<double>();

@@ -233,6 +233,35 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
                     "from MPM points within the cutoff (s-15 to s-18); momentum_conserving: "
                     "and each acts back on its MPM point")
           .def(std::string("seed")));
+  s.params.push_back(
+      Param::map(
+          "ghost_force_correction",
+          {Param::real("average_time", Dimension::kTime,
+                       "The reference reactions are the mean over the stage's first this much "
+                       "(at least one step); 0: the first step's, the correction at 0 K. At a "
+                       "temperature one step holds the particles' thermal forces too")
+               .def(0.0)
+               .at_least(0),
+           Param::identifier("from_stage",
+                             "Apply from the first step the dead loads an earlier concurrent "
+                             "stage of the same body measured (its ghost_forces.h5), instead "
+                             "of measuring: a body measured at rest, then loaded or strained")
+               .earlier_stage({"concurrent"})},
+          "Subtract from each MPM point the pair reaction it takes in the reference state (the "
+          "quasicontinuum's ghost-force correction as a dead load): at rest the interface then "
+          "pushes no point, where without it the first MPM plane is pushed and the second "
+          "pulled by the DPD neighbours whose MPM counterparts the continuum lacks "
+          "(docs/concurrent.md). The stage writes the dead loads to ghost_forces.h5")
+          .only_when("interface", "momentum_conserving"));
+  s.params.push_back(
+      Param::real_list("initial_strain", Dimension::kNone,
+                       "The body starts uniformly strained by this much along x, y and z: "
+                       "positions scaled about the box's lower corner (give a periodic axis "
+                       "its strained length), the MPM points carrying the stress of that strain "
+                       "(λ tr ε + 2 μ ε of the continuum). A ghost_force_correction must then come "
+                       "from_stage: its reference state is the unstrained body")
+          .def(std::vector<double>{0.0, 0.0, 0.0})
+          .length(3, 3));
   s.params.push_back(continuum());
   s.params.push_back(gas());
   s.params.push_back(Param::map(

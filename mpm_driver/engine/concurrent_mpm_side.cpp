@@ -142,6 +142,14 @@ void ConcurrentMpmSide::take_reactions(std::vector<coupling::Vec3> force) {
     reactions_.assign(engine_.points().size(), {0.0, 0.0, 0.0});
     for (std::size_t k = 0; k < force.size(); ++k) reactions_[partner_.index[k]] = force[k];
   }
+  if (ghost_forces_ != nullptr) {
+    const grid::MaterialPoints& p = engine_.points();
+    parts_.assign(p.size(), 0);
+    if (!ghost_forces_->measured()) {
+      for (std::size_t i = 0; i < p.size(); ++i) parts_[i] = part_of_(p.x[i]);
+    }
+    ghost_forces_->correct(p.id, parts_, reactions_);
+  }
   engine_.boundary_conditions().point_forces = reactions_;
 }
 

@@ -4,8 +4,11 @@
 // reactions of those pairs applied to the points as point forces.
 #pragma once
 
+#include <functional>
+
 #include "engine/mpm_engine.hpp"
 #include "pbms/coupling/coupling_side.hpp"
+#include "pbms/coupling/ghost_force_correction.hpp"
 #include "pbms/coupling/held_nodes.hpp"
 
 namespace pbms::mpm {
@@ -33,6 +36,14 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   void partners_renewed() override;
   [[nodiscard]] coupling::SpaceBox points_box() const override;
   void take_reactions(std::vector<coupling::Vec3> force) override;
+  // The reactions from then on pass through `c` (which must outlive the
+  // side) before they reach the points; `part_of` labels the part of the
+  // body a point at x belongs to (its region), whose dead loads balance.
+  void correct_ghost_forces(coupling::GhostForceCorrection& c,
+                            std::function<int(const grid::Vec3&)> part_of) {
+    ghost_forces_ = &c;
+    part_of_ = std::move(part_of);
+  }
 
   // Forgets the followed points, as a migration does: the next step
   // chooses the partners afresh from the points as they are stored. A
@@ -67,6 +78,9 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   std::vector<grid::Vec3> last_x_, unwrapped_;  // wrapped as stored; continuous
   std::vector<grid::Vec3> chosen_at_;           // unwrapped_ when partners were chosen
   bool changed_ = true;                         // points changed rank since then
+  coupling::GhostForceCorrection* ghost_forces_ = nullptr;
+  std::function<int(const grid::Vec3&)> part_of_;
+  std::vector<int> parts_;
 };
 
 }  // namespace pbms::mpm

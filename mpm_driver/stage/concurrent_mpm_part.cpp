@@ -19,6 +19,7 @@
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/cross_program_link.hpp"
 #include "pbms/coupling/exchange_report.hpp"
+#include "pbms/coupling/ghost_force_correction.hpp"
 #include "pbms/coupling/scalar_across_programs.hpp"
 #include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
@@ -177,6 +178,7 @@ struct MpmPartCheckpoint {
   coupling::ConcurrentProbes& probes;
   coupling::ConservationLedger& ledger;
   GasProbe* gas;
+  coupling::GhostForceCorrection* ghost_forces;
 
   // Collective over the part's ranks.
   [[nodiscard]] CheckpointArchive save() const {
@@ -185,6 +187,7 @@ struct MpmPartCheckpoint {
     probes.save(a);
     ledger.save(a);
     if (gas != nullptr) gas->save(a);
+    if (ghost_forces != nullptr) ghost_forces->save(a);
     return a;
   }
   // Returns the step the archive was written after.
@@ -193,9 +196,22 @@ struct MpmPartCheckpoint {
     probes.load(a);
     (void)ledger.load(a);  // this part adds its rows as it goes: none pending
     if (gas != nullptr) gas->load(a);
+    if (ghost_forces != nullptr) ghost_forces->load(a);
     return step;
   }
 };
+
+// Where a stage leaves its ghost forces' dead loads for later stages.
+constexpr const char* kGhostForceFile = "ghost_forces.h5";
+
+// What the ghost-force correction subtracts: on how many points, the
+// largest on one, and the largest net a part's measured mean held (which
+// the correction leaves out).
+void report_ghost_forces(StageResults& r, const coupling::GhostForceCorrection& g) {
+  r.add_scalar("ghost_force_points", static_cast<double>(g.points()), "1");
+  r.add_scalar("ghost_force_largest", g.largest(), "eV/Å");
+  r.add_scalar("ghost_force_net_removed", g.net_removed(), "eV/Å");
+}
 
 }  // namespace
 
@@ -239,13 +255,25 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
                 engine.model().group_mask(MpmPartOfBody::kGasAwayGroup));
   }
   GasProbe* gas_probe = gas ? &*gas : nullptr;
+  std::optional<coupling::GhostForceCorrection> ghost_forces;
+  if (!cp.ghost_force_stage.empty()) {
+    ghost_forces.emplace(coupling::GhostForceCorrection::read(
+        ctx.comm(), ctx.run_dir() / cp.ghost_force_stage / kGhostForceFile));
+  } else if (cp.ghost_force_steps > 0) {
+    ghost_forces.emplace(ctx.comm(), cp.ghost_force_steps);
+  }
+  if (ghost_forces) {
+    part.side().correct_ghost_forces(*ghost_forces,
+                                     [&cp](const grid::Vec3& x) { return cp.region_at(x); });
+  }
   MpmPartSampler sampler(ctx.comm(), inter, cp, engine, probes);
   // The checkpoints dpd_driver's part writes, at the same steps (a step
   // after one chooses the partners afresh, as a resumed run's first does).
   StageCheckpoints checkpoints(ctx);
   checkpoints.run_as_part(
       "mpm", [&](bool mine) { return coupling::either_program(inter, ctx.comm(), mine); });
-  MpmPartCheckpoint state{engine, probes, ledger, gas_probe};
+  MpmPartCheckpoint state{engine, probes, ledger, gas_probe,
+                          ghost_forces ? &*ghost_forces : nullptr};
   std::unique_ptr<MpmPartOutput> output;
   std::int64_t first_step = 1;
   if (checkpoints.enabled() && checkpoints.resuming()) {
@@ -298,6 +326,11 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   probes.report(r, "mpm");
   ledger.report(r, "mpm");
   if (gas) gas->report(r, count_gas_points(ctx.comm(), engine, part.gas_material()));
+  if (ghost_forces) {
+    report_ghost_forces(r, *ghost_forces);
+    ghost_forces->write(ctx.stage_dir() / kGhostForceFile);
+    r.files.push_back((std::filesystem::path(ctx.stage()) / kGhostForceFile).string());
+  }
   // With no point of its own (a body all DPD) this part only answered
   // dpd_driver's exchanges; figures for it would describe nothing.
   if (engine.total_points() > 0) {

@@ -71,6 +71,9 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
       m.options.grid_density_weight = std::min(1.0, cp.time_step / cp.gas->density_time);
     }
   }
+  const auto& e = cp.initial_strain;
+  const double strained_volume = site_volume * (1.0 + e[0]) * (1.0 + e[1]) * (1.0 + e[2]);
+  const grid::SymmetricTensor strained_stress{body.initial_stress};
   for (const auto& p : body.points) {
     grid::MaterialPointState s;
     double volume = site_volume;
@@ -85,6 +88,8 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
       }
     } else {
       if (continuum_ < 0) throw Error("the MPM part was handed a body site but has no continuum");
+      volume = strained_volume;
+      s.stress = strained_stress;
       s.density = p.mass / volume;
     }
     m.points.add(p.id, p.x, volume, s, material, groups);

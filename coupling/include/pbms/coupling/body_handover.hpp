@@ -46,7 +46,11 @@ struct BodyHandover {
   double reach = 0.0;  // Å: partners within it are exchanged (pair cutoff plus skin)
   double skin = 0.0;   // Å: partners are chosen afresh when a side has moved half of it
   std::vector<HandedPoint> points;
-  PBMS_FIELDS(groups, band_lo, band_hi, reach, skin, points)
+  // The stress the body's points start with, bar, Voigt order [xx, yy, zz,
+  // yz, xz, xy]: under an initial_strain the DPD crystal's (its perfect
+  // lattice's static stress at the strain less that unstrained); else 0.
+  std::array<double, 6> initial_stress{};
+  PBMS_FIELDS(groups, band_lo, band_hi, reach, skin, points, initial_stress)
 
   [[nodiscard]] grid::NodeBox band() const { return {band_lo, band_hi}; }
 };

@@ -105,6 +105,15 @@ struct ConcurrentParams {
   double band_margin = 0.0;
   std::vector<ConcurrentRegion> regions;
   InterfaceTreatment interface = InterfaceTreatment::kSeed;
+  // The momentum-conserving interface's ghost forces, measured over this
+  // many steps and subtracted from then on (ghost_force_correction.hpp);
+  // 0: not corrected.
+  std::int64_t ghost_force_steps = 0;
+  std::string ghost_force_stage;  // else: the dead loads this earlier stage measured
+  // The body starts uniformly strained along each axis (positions scaled
+  // about the box's lower corner), its MPM points carrying the stress of
+  // that strain.
+  std::array<double, 3> initial_strain{0.0, 0.0, 0.0};
   double youngs_modulus = 0.0;  // bar; 0 without a continuum (no MPM region)
   double poisson_ratio = 0.0;
   bool ddmp = false;  // the MPM points' gradients
@@ -148,6 +157,8 @@ struct ConcurrentParams {
   // may nest: a core inside a shell), else the first; DPD when none does (a
   // flyer outside the body's regions).
   [[nodiscard]] Solver solver_at(const geometry::Vec3& x) const;
+  // That region's index in `regions`; -1 where none holds x.
+  [[nodiscard]] int region_at(const geometry::Vec3& x) const;
   // Which part of the body a solver advances, for messages: "the MPM part
   // (region 'right')".
   [[nodiscard]] std::string part(Solver s) const;
