@@ -71,6 +71,13 @@ config::StageKindSpec TensionStage::spec() {
       Param::integer("grip_cells", "free only: thickness of each rigid grip in unit cells")
           .def(2)
           .at_least(1),
+      Param::choice("wire_start", {"profile", "rest"},
+                    "free only: how the wire between the grips starts the pull. profile: "
+                    "moving with the grips' linear velocity profile, so no wave is launched; "
+                    "rest: at rest, the grips at full speed, launching a stress wave from each "
+                    "(the gauge's early stress then carries the wave: docs/md-driver.md)")
+          .def(std::string("profile"))
+          .only_when("lateral", "free"),
       Param::real("timestep", Dimension::kTime, "MD time step").def(0.002).above(0).at_most(0.01),
       Param::real("equilibration", Dimension::kTime, "Time at temperature before loading")
           .def(10.0)
@@ -109,6 +116,7 @@ struct TensionParams {
   double temperature = 0, rate = 0, initial_strain = 0, max_strain = 0, fit_max = 0;
   double dt = 0;
   int grip = 0;
+  bool wire_at_rest = false;  // wire_start: rest
   int64_t n_equil = 0, n_load = 0, every = 0, traj_every = 0;
 
   static TensionParams from_yaml(const YAML::Node& p);
@@ -134,6 +142,7 @@ TensionParams TensionParams::from_yaml(const YAML::Node& p) {
   s.max_strain = p["max_strain"].as<double>();
   s.fit_max = p["fit_max_strain"].as<double>();
   s.grip = p["grip_cells"].as<int>();
+  s.wire_at_rest = p["wire_start"] && p["wire_start"].as<std::string>() == "rest";
   s.dt = p["timestep"].as<double>();
   s.n_equil = steps_for(p["equilibration"].as<double>(), s.dt);
   s.n_load = steps_for((s.max_strain - s.initial_strain) / s.rate, s.dt);
@@ -225,9 +234,11 @@ Grips attach_grips(Lammps& lmp, const TensionParams& s, double a) {
   lmp.command(fmt::format("velocity left set {} 0 0 units box", -g.speed));
   lmp.command(fmt::format("velocity right set {} 0 0 units box", g.speed));
   // The wire starts from the matching linear velocity profile, so no shock
-  // is launched from the grips.
-  lmp.command(fmt::format("velocity wire ramp vx {} {} x {:.10g} {:.10g} sum yes units box",
-                          -g.speed, g.speed, g.xlo + g.length, g.xhi - g.length));
+  // is launched from the grips (unless it is asked to start at rest).
+  if (!s.wire_at_rest) {
+    lmp.command(fmt::format("velocity wire ramp vx {} {} x {:.10g} {:.10g} sum yes units box",
+                            -g.speed, g.speed, g.xlo + g.length, g.xhi - g.length));
+  }
   return g;
 }
 
