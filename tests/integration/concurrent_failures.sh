@@ -1,4 +1,5 @@
 source "$(dirname "$0")/lib.sh"
+export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their plots
 # Failures in a concurrent DPD/MPM stage end the whole job, never hang:
 # SIGKILL of an mpm_driver rank and of the dpd_driver rank mid-stage each end
 # it within 10 s, non-zero, naming the program, rank, stage and step; a

@@ -1,4 +1,5 @@
 source "$(dirname "$0")/lib.sh"
+export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their plots
 # 100 DPD thermostat steps (1,152 particles, free surfaces in z, a rigid
 # moving wall) on 1, 2 and 4 ranks (oversubscribed): every final position
 # agrees with the 1-rank run to 1e-9 Å and every final velocity to 1e-10 Å/ps.

@@ -1,4 +1,5 @@
 source "$(dirname "$0")/lib.sh"
+export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their plots
 # fit_dpd_potential recovers potentials from targets the DPD engine computed
 # with them (static crystal, so no sampling noise). The tolerance is 1e-4
 # relative: the optimisers stop at x_tolerance 1e-8 and the recoveries reach

@@ -1,4 +1,5 @@
 source "$(dirname "$0")/lib.sh"
+export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their plots
 # A fit killed midway (SIGKILL of the coupler) and started again with
 # --resume replays the candidates it recorded, judges none of them again,
 # and ends with the parameters of an uninterrupted run, bit for bit.

@@ -1,4 +1,5 @@
 source "$(dirname "$0")/lib.sh"
+export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their plots
 # MD results are kept in <output>/.cache/ and reused: a second run under a new
 # name whose MD stage is unchanged, but whose later stage is, runs no LAMMPS
 # and gets the same numbers and files; a changed MD parameter misses the

@@ -8,7 +8,6 @@ source "$(dirname "$0")/lib.sh"
 #  - C11, C12 and C44, second derivatives of the energy per volume, within
 #    0.2 % (md_elastic's +/-0.1 % strains differ from the second
 #    derivative by O(1e-3) relative for copper's third-order constants).
-export PBMS_SKIP_BUILD=1
 "$PBMS" run "$ROOT/tests/integration/configs/md_sutton_chen.yaml" > out.txt 2>&1 || { cat out.txt; fail "run"; }
 [ -s runs/md_sutton_chen/elastic/cu_sc.sutton_chen.eam.alloy ] || fail "no table written"
 "$PY" - runs/md_sutton_chen <<'PYEOF'

@@ -1,4 +1,5 @@
 source "$(dirname "$0")/lib.sh"
+export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their plots
 # 200 steps of the disks on 1, 2 and 4 MPM ranks (oversubscribed) agree to
 # 1e-10 relative in every particle position and velocity, with plain and
 # with DDMP gradients (whose nodal volumes, gradients and dual forces are

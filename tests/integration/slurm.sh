@@ -23,7 +23,7 @@ mkdir bad && cd bad
 sed 's/^launch: {md: 1,/launch: {md: -1,/' "$cfg" > bad.yaml
 grep -q "md: -1" bad.yaml || fail "could not make the bad config"
 set +e
-PBMS_SKIP_BUILD=1 "$PBMS" run --slurm bad.yaml > out.txt 2> err.txt
+"$PBMS" run --slurm bad.yaml > out.txt 2> err.txt
 rc=$?
 set -e
 [ "$rc" -eq 1 ] || { cat out.txt err.txt; fail "--slurm with a bad config: exit $rc, not 1"; }
