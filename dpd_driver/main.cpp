@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   registry.add<pbms::dpd::DpdElasticStage>();
   registry.add<pbms::dpd::DpdIsothermStage>();
   registry.add<pbms::dpd::DpdUniaxialStrainStage>();
+  registry.add<pbms::dpd::DpdSurfaceEnergyStage>();
   registry.add<pbms::dpd::ConcurrentStage>();
   registry.add_material(pbms::dpd::MesoparticleMaterial::spec());
   pbms::DriverInfo info{"dpd_driver", "dpd", {}};

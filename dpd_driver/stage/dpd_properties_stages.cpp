@@ -13,6 +13,7 @@
 #include "pbms/units.hpp"
 #include "properties/elastic_constants.hpp"
 #include "properties/isotherm.hpp"
+#include "properties/surface_energy.hpp"
 #include "properties/uniaxial_strain.hpp"
 
 namespace pbms::dpd {
@@ -359,6 +360,73 @@ void DpdUniaxialStrainStage::run(StageContext& ctx) {
     r.add_column("uniaxial_strain", "shock_speed", "m/s", shock);
     r.add_column("uniaxial_strain", "particle_velocity", "m/s", particle);
     r.add_column("uniaxial_strain", "front_speed", "m/s", front);
+  });
+}
+
+namespace {
+
+// dpd_surface_energy's keys, read once.
+struct SurfaceEnergyParams {
+  int planes = 12;
+  bool zero_pressure = true;
+
+  static SurfaceEnergyParams from_yaml(const YAML::Node& p) {
+    return {p["planes"].as<int>(), p["zero_pressure"].as<bool>()};
+  }
+};
+
+constexpr double kJoulePerSquareMetreInEvPerSquareAngstrom = 1.0 / 16.021766208;
+
+}  // namespace
+
+config::StageKindSpec DpdSurfaceEnergyStage::spec() {
+  config::StageKindSpec s;
+  s.kind = "dpd_surface_energy";
+  s.program = "dpd_driver";
+  s.doc =
+      "Static (100) surface energy of the DPD fcc crystal: a slab periodic across against the "
+      "bulk, unrelaxed (what a thin rod of the model feels; a bulk fit leaves it free)";
+  s.material_kinds = {"dpd_mesoparticle"};
+  s.params = {
+      Param::identifier("material", "A dpd_mesoparticle material").require().material(),
+      Param::integer("planes", "(100) planes of the slab; even").def(12).at_least(2),
+      Param::boolean("zero_pressure",
+                     "Use the static crystal's lattice constant of zero pressure instead of the "
+                     "material's")
+          .def(true),
+  };
+  s.outputs = {
+      {"surface_energy_100", OutputSpec::Shape::kScalar, "J/m^2",
+       "Energy per area of each (100) face, unrelaxed"},
+      {"cohesive_energy", OutputSpec::Shape::kScalar, "eV",
+       "Static energy per particle of the bulk crystal (negative when bound)"},
+      {"lattice_constant", OutputSpec::Shape::kScalar, "Å", "Lattice constant used"},
+  };
+  return s;
+}
+
+void DpdSurfaceEnergyStage::run(StageContext& ctx) {
+  const SurfaceEnergyParams p = SurfaceEnergyParams::from_yaml(ctx.params());
+  if (p.planes % 2 != 0) {
+    throw Error(fmt::format("stage '{}': planes must be even (got {})", ctx.stage(), p.planes));
+  }
+  on_rank_zero(ctx, [&] {
+    const MesoparticleMaterial material = MesoparticleMaterial::from_yaml(ctx.material());
+    auto pair = pair_style_from_yaml(material.potential);
+    CrystalSpec spec;
+    spec.lattice_constant = material.lattice_constant;
+    spec.mass = material.mass;
+    ThermalSettings cold;
+    cold.temperature = 0.0;
+    if (p.zero_pressure) {
+      spec.lattice_constant = zero_pressure_lattice_constant(*pair, spec, cold);
+    }
+    const SurfaceEnergy e = surface_energy_100(*pair, spec.lattice_constant, p.planes);
+    auto& r = ctx.results();
+    r.add_scalar("surface_energy_100",
+                 e.energy_per_area / kJoulePerSquareMetreInEvPerSquareAngstrom, "J/m^2");
+    r.add_scalar("cohesive_energy", e.bulk_site_energy, "eV");
+    r.add_scalar("lattice_constant", spec.lattice_constant, "Å");
   });
 }
 

@@ -1,4 +1,4 @@
-// dpd_elastic, dpd_isotherm and dpd_uniaxial_strain: properties of the periodic bulk DPD crystal
+// dpd_elastic, dpd_isotherm, dpd_uniaxial_strain and dpd_surface_energy: properties of the periodic bulk DPD crystal
 // of a dpd_mesoparticle material, computed in process by the calculators of
 // properties/ (the same calls the MD->DPD fit makes). The crystal is small
 // (hundreds of particles), so rank 0 computes and the other ranks wait.
@@ -21,6 +21,12 @@ class DpdIsothermStage : public StageKind {
 };
 
 class DpdUniaxialStrainStage : public StageKind {
+ public:
+  static config::StageKindSpec spec();
+  void run(StageContext& ctx) override;
+};
+
+class DpdSurfaceEnergyStage : public StageKind {
  public:
   static config::StageKindSpec spec();
   void run(StageContext& ctx) override;
