@@ -71,6 +71,9 @@ c.check(abs(b / a - 1) <= 0.05, f"gauge yield: MPM plateau {b:.2f} vs DPD first 
 fit = s["fit"]["results"]
 print("     fitted: " + ", ".join(f"{k} {fit[k]['value']:.6g}" for k in ("epsilon", "c", "n", "m") if k in fit)
       + f"; {fit['evaluations']['value']:.0f} candidates, fit wall {s['fit']['wall_s']:.0f} s")
+gamma = s["surface_dpd"]["results"]["surface_energy_100"]["value"]
+print(f"info the fitted model's (100) surface energy {gamma:.2f} J/m^2 (not a target; EAM copper "
+      f"1.345, and seeds 2026-2029 of the fit 2.0-5.1: docs/hierarchy.md)")
 log = open(f"{refit}/log.txt").read()
 for stage in ("isotherm", "elastic_md"):
     c.check(f"stage '{stage}' reused from the cache" in log, f"refit: {stage} reused from the cache")
