@@ -375,8 +375,6 @@ struct SurfaceEnergyParams {
   }
 };
 
-constexpr double kJoulePerSquareMetreInEvPerSquareAngstrom = 1.0 / 16.021766208;
-
 }  // namespace
 
 config::StageKindSpec DpdSurfaceEnergyStage::spec() {
@@ -411,22 +409,14 @@ void DpdSurfaceEnergyStage::run(StageContext& ctx) {
     throw Error(fmt::format("stage '{}': planes must be even (got {})", ctx.stage(), p.planes));
   }
   on_rank_zero(ctx, [&] {
-    const MesoparticleMaterial material = MesoparticleMaterial::from_yaml(ctx.material());
-    auto pair = pair_style_from_yaml(material.potential);
-    CrystalSpec spec;
-    spec.lattice_constant = material.lattice_constant;
-    spec.mass = material.mass;
-    ThermalSettings cold;
-    cold.temperature = 0.0;
-    if (p.zero_pressure) {
-      spec.lattice_constant = zero_pressure_lattice_constant(*pair, spec, cold);
-    }
-    const SurfaceEnergy e = surface_energy_100(*pair, spec.lattice_constant, p.planes);
+    // The static crystal (temperature 0: no sampling), at its zero-pressure
+    // lattice constant if asked.
+    Crystal c = crystal_from(ctx, CrystalParams{0.0, config::CrystalSampling{}, p.zero_pressure});
+    const SurfaceEnergy e = surface_energy_100(*c.pair, c.spec.lattice_constant, p.planes);
     auto& r = ctx.results();
-    r.add_scalar("surface_energy_100",
-                 e.energy_per_area / kJoulePerSquareMetreInEvPerSquareAngstrom, "J/m^2");
+    r.add_scalar("surface_energy_100", e.energy_per_area * units::kJoulePerM2PerEvPerA2, "J/m^2");
     r.add_scalar("cohesive_energy", e.bulk_site_energy, "eV");
-    r.add_scalar("lattice_constant", spec.lattice_constant, "Å");
+    r.add_scalar("lattice_constant", c.spec.lattice_constant, "Å");
   });
 }
 

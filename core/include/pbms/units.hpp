@@ -15,6 +15,8 @@ inline constexpr double kBarPerGPa = 1.0e4;
 // 1 g/mol/Å^3 in g/cm^3: 1e24 / N_A.
 inline constexpr double kGramPerCm3PerAmuPerA3 = 1.66053906660;
 inline constexpr double kBarPerEvPerA3 = 1.6021766208e6;  // eV/Å^3 -> bar
+// eV/Å^2 -> J/m^2: surface energies (the dpd_surface_energy stage).
+inline constexpr double kJoulePerM2PerEvPerA2 = 16.021766208;
 
 enum class Dimension {
   kNone,
