@@ -43,7 +43,8 @@ KIND_DESCRIPTIONS = {
                "test (Young's modulus).",
     "mpm_run": "Explicit material point method run of continuum bodies on a background grid.",
     "fit_dpd_potential": "Fits the DPD pair potential's parameters so that the DPD crystal "
-                         "reproduces the targets (isotherm, elastic constants); dpd_driver "
+                         "reproduces the targets (isotherm, elastic constants, surface "
+                         "energy); dpd_driver "
                          "judges every candidate.",
     "concurrent": "One body shared by two programs: some regions DPD particles (dpd_driver), "
                   "the rest continuum MPM points (mpm_driver), exchanging interface data every "
@@ -285,6 +286,9 @@ def headline_keys(stage):
     when present. dpd_run, mpm_run and concurrent measure what their config
     asks for (a tension, an impact, a wave front), so theirs follow it."""
     kind, cfg = stage.kind, stage.config
+    if kind == "fit_dpd_potential":  # held-out rows only where an isotherm is a target
+        return [("objective", True), ("max_residual_trained", True),
+                ("max_residual_held_out", truthy_map(cfg, "isotherm"))]
     if kind in HEADLINES:
         return [(k, True) for k in HEADLINES[kind]]
     if kind in ("dpd_run", "mpm_run", "concurrent") and truthy_map(cfg, "tension"):

@@ -53,6 +53,10 @@ constexpr UnitEntry kUnits[] = {
     {Dimension::kForce, "eV/Å", 1.0},
     {Dimension::kForce, "eV/A", 1.0},
     {Dimension::kForce, "nN", 0.6241509074},
+    {Dimension::kSurfaceEnergy, "eV/Å^2", 1.0},
+    {Dimension::kSurfaceEnergy, "eV/A^2", 1.0},
+    {Dimension::kSurfaceEnergy, "J/m^2", 1.0 / kJoulePerM2PerEvPerA2},
+    {Dimension::kSurfaceEnergy, "mJ/m^2", 1.0e-3 / kJoulePerM2PerEvPerA2},
 };
 
 std::string_view trim(std::string_view s) {
@@ -88,6 +92,8 @@ std::string_view dimension_name(Dimension d) {
       return "an acceleration";
     case Dimension::kForce:
       return "a force";
+    case Dimension::kSurfaceEnergy:
+      return "an energy per area";
   }
   return "a quantity";
 }
@@ -135,6 +141,8 @@ std::string_view canonical_symbol(Dimension d) {
       return "Å/ps^2";
     case Dimension::kForce:
       return "eV/Å";
+    case Dimension::kSurfaceEnergy:
+      return "eV/Å^2";
   }
   return "?";
 }

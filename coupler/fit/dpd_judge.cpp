@@ -146,6 +146,15 @@ void DpdJudge::submit_isotherms(const YAML::Node& potential, double temperature,
     pending.emplace(scheduler.submit(kDriver, request("dpd_isotherm", params, potential)),
                     std::move(share));
   }
+  // The surface energy is the static crystal's at its own zero pressure,
+  // whatever the temperature: milliseconds.
+  if (settings_.surface) {
+    YAML::Node params;
+    params["name"] = ctx_.stage().name;
+    params["material"] = settings_.material;
+    pending.emplace(scheduler.submit(kDriver, request("dpd_surface_energy", params, potential)),
+                    Pending{{}, false, std::nullopt, true});
+  }
 }
 
 DpdJudge::Answers DpdJudge::collect(const YAML::Node& potential, double temperature,
@@ -199,6 +208,10 @@ Judgement DpdJudge::judgement_of(const Requests& pending, const Answers& answers
         j.volume_per_atom[p.rows[k]] = volume[k];
         j.pressure_error[p.rows[k]] = error[k];
       }
+    }
+    if (p.surface) {
+      j.surface_energy_100 =
+          units::to_metal(exact_scalar(r, "surface_energy_100", "J/m^2"), "J/m^2");
     }
     if (p.state) {
       states[*p.state] = state_stress(r);

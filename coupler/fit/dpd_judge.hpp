@@ -1,6 +1,7 @@
 // dpd_driver as the fit's judge: a candidate potential becomes dpd_isotherm
 // requests for the target pressures and, with elastic targets, one
-// dpd_elastic request per strained state, all with the run's seed, spread
+// dpd_elastic request per strained state and, with a surface target, one
+// dpd_surface_energy request, all with the run's seed, spread
 // over the driver's rank groups. The answers do not depend on which group
 // ran them, so a fit gives the same parameters on any number of groups.
 #pragma once
@@ -27,12 +28,13 @@ class DpdJudge {
 
  private:
   // What a request answers for: rows of the isotherm targets, the lattice
-  // constant of zero pressure, or one strained state of the elastic
-  // constants.
+  // constant of zero pressure, one strained state of the elastic constants,
+  // or the static surface energy.
   struct Pending {
     std::vector<size_t> rows;
     bool lattice = false;
     std::optional<size_t> state;
+    bool surface = false;
   };
   using Requests = std::map<protocol::RequestId, Pending>;
   using Answers = std::map<protocol::RequestId, Answer>;

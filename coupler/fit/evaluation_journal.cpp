@@ -36,6 +36,7 @@ std::string line_of(const JournalEntry& e) {
   put_optional(out, "c11_error", j.c11_error);
   put_optional(out, "c12_error", j.c12_error);
   put_optional(out, "c44_error", j.c44_error);
+  put_optional(out, "surface_energy_100", j.surface_energy_100);
   out << YAML::Key << "wall_s" << YAML::Value << j.wall_s;
   out << YAML::EndMap;
   return out.c_str();
@@ -57,6 +58,7 @@ JournalEntry entry_from_yaml(const YAML::Node& n) {
   j.c11_error = get_optional(n, "c11_error");
   j.c12_error = get_optional(n, "c12_error");
   j.c44_error = get_optional(n, "c44_error");
+  j.surface_energy_100 = get_optional(n, "surface_energy_100");
   j.wall_s = n["wall_s"].as<double>();
   return e;
 }

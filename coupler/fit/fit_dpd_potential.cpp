@@ -85,7 +85,7 @@ class Fit {
   Fit(CouplerStageContext& ctx, FitSettings settings)
       : ctx_(ctx),
         s_(std::move(settings)),
-        objective_(s_.isotherm, s_.elastic),
+        objective_(s_.isotherm, s_.elastic, s_.surface),
         judge_(ctx, s_),
         journal_(ctx.stage_dir() / "evaluations.journal", ctx.resume()),
         potential_schema_(schema_of(ctx)),
@@ -232,34 +232,17 @@ class Fit {
   // residual times the square root of its weight in the objective. A failed
   // candidate spreads its penalty evenly over them.
   std::vector<double> weighted_residuals(const Evaluation& e) const {
-    const std::vector<double> w = fitted_weights();
     if (!e.judgement.ok) {
-      return std::vector<double>(w.size(), std::sqrt(e.objective / static_cast<double>(w.size())));
+      const size_t n = fitted_count();
+      return std::vector<double>(n, std::sqrt(e.objective / static_cast<double>(n)));
     }
     std::vector<double> r = fitted_residuals(e.residuals);
-    for (size_t i = 0; i < r.size(); ++i) r[i] *= std::sqrt(w[i]);
+    const std::vector<double> scale = objective_.fitted_scales(e.residuals);
+    for (size_t i = 0; i < r.size(); ++i) r[i] *= scale[i];
     return r;
   }
 
-  // A target's weight shared over its fitted entries, in fitted_residuals'
-  // order (FitObjective::value is the weighted mean square per target).
-  std::vector<double> fitted_weights() const {
-    size_t rows = 0, constants = 0;
-    for (size_t i = 0; s_.isotherm && i < s_.isotherm->held_out.size(); ++i) {
-      rows += s_.isotherm->held_out[i] ? 0 : 1;
-    }
-    if (s_.elastic) {
-      for (const auto& c : {s_.elastic->c11, s_.elastic->c12, s_.elastic->c44})
-        constants += c ? 1 : 0;
-    }
-    std::vector<double> w;
-    for (size_t i = 0; i < rows; ++i) w.push_back(s_.isotherm->weight / static_cast<double>(rows));
-    for (size_t i = 0; i < constants; ++i)
-      w.push_back(s_.elastic->weight / static_cast<double>(constants));
-    return w;
-  }
-
-  size_t fitted_count() const { return fitted_weights().size(); }
+  size_t fitted_count() const { return objective_.target_scales().size(); }
 
   // Levenberg-Marquardt on the weighted residuals, in the unit box of the
   // bounds (a step outside is pulled back onto the box).
@@ -339,17 +322,9 @@ class Fit {
     return x;
   }
 
-  // The fitted residuals: trained isotherm rows, then the targeted modes.
-  std::vector<double> fitted_residuals(const Residuals& r) const {
-    std::vector<double> out;
-    for (size_t i = 0; i < r.isotherm.size(); ++i) {
-      if (!s_.isotherm->held_out[i]) out.push_back(r.isotherm[i]);
-    }
-    for (const auto& c : r.elastic) {
-      if (c) out.push_back(*c);
-    }
-    return out;
-  }
+  // The fitted residuals: trained isotherm rows, the targeted modes, the
+  // surface.
+  std::vector<double> fitted_residuals(const Residuals& r) const { return objective_.fitted(r); }
 
   // Their sampling errors at the best point: a pressure error becomes a
   // volume error through the target isotherm's slope dV/dP.
@@ -372,6 +347,7 @@ class Fit {
         out.push_back(e ? *e / *mode_value(m, el.c11, el.c12, el.c44) : 0.0);
       }
     }
+    if (s_.surface) out.push_back(0.0);  // static: no sampling error
     return out;
   }
 
@@ -419,27 +395,6 @@ class Fit {
     return parameter_errors(*jacobian, residual_errors(evaluations_[best].judgement));
   }
 
-  // How the objective weighs each fitted residual: it is the squared norm
-  // of the residuals times these.
-  std::vector<double> fitted_row_scales(const Residuals& r) const {
-    std::vector<double> out;
-    if (s_.isotherm) {
-      const auto& held = s_.isotherm->held_out;
-      const auto n = static_cast<double>(std::count(held.begin(), held.end(), false));
-      for (size_t i = 0; i < r.isotherm.size(); ++i) {
-        if (!held[i]) out.push_back(std::sqrt(s_.isotherm->weight / n));
-      }
-    }
-    if (s_.elastic) {
-      const auto n = static_cast<double>(
-          std::count_if(r.elastic.begin(), r.elastic.end(), [](const auto& c) { return c; }));
-      for (const auto& c : r.elastic) {
-        if (c) out.push_back(std::sqrt(s_.elastic->weight / n));
-      }
-    }
-    return out;
-  }
-
   // The Jacobian per step of a parameter's whole bounds, rows weighed as
   // the objective weighs them.
   Degeneracy degeneracy(size_t best, const std::optional<Jacobian>& jacobian) const {
@@ -448,7 +403,7 @@ class Fit {
     for (auto& row : unit) {
       for (size_t k = 0; k < row.size(); ++k) row[k] *= s_.free[k].upper - s_.free[k].lower;
     }
-    return degeneracy_of(unit, fitted_row_scales(evaluations_[best].residuals));
+    return degeneracy_of(unit, objective_.fitted_scales(evaluations_[best].residuals));
   }
 
   void report(size_t best, const std::vector<double>& errors, const Degeneracy& degeneracy) {
@@ -472,6 +427,12 @@ class Fit {
     log_table();
     if (s_.isotherm) isotherm_table(e);
     if (s_.elastic) elastic_table(e);
+    if (s_.surface && e.judgement.surface_energy_100) {
+      r.add_scalar("surface_energy_100",
+                   *e.judgement.surface_energy_100 * units::kJoulePerM2PerEvPerA2, "J/m^2");
+      r.add_scalar("surface_energy_100_target",
+                   s_.surface->energy_100 * units::kJoulePerM2PerEvPerA2, "J/m^2");
+    }
     report_degeneracy(degeneracy);
   }
 
@@ -568,6 +529,14 @@ class Fit {
       r.add_column(t, "c11", "GPa", c11);
       r.add_column(t, "c12", "GPa", c12);
       r.add_column(t, "c44", "GPa", c44);
+    }
+    if (s_.surface) {
+      std::vector<double> gamma;
+      for (const auto& e : evaluations_) {
+        const auto& g = e.judgement.surface_energy_100;
+        gamma.push_back(g ? *g * units::kJoulePerM2PerEvPerA2 : kNaN);
+      }
+      r.add_column(t, "surface_energy_100", "J/m^2", gamma);
     }
   }
 

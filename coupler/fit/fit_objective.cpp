@@ -99,41 +99,64 @@ Residuals FitObjective::residuals(const Judgement& j) const {
           relative(mode_value(m, j.c11, j.c12, j.c44), mode_value(m, t.c11, t.c12, t.c44)));
     }
   }
+  if (surface_) r.surface = relative(j.surface_energy_100, surface_->energy_100);
   return r;
 }
 
-double FitObjective::value(const Residuals& r) const {
-  double total = 0.0;
+std::vector<double> FitObjective::fitted(const Residuals& r) const {
+  std::vector<double> out;
+  for (size_t i = 0; i < r.isotherm.size(); ++i) {
+    if (!isotherm_->held_out[i]) out.push_back(r.isotherm[i]);
+  }
+  for (const auto& c : r.elastic) {
+    if (c) out.push_back(*c);
+  }
+  if (r.surface) out.push_back(*r.surface);
+  return out;
+}
+
+std::vector<double> FitObjective::fitted_scales(const Residuals& r) const {
+  std::vector<double> out;
   if (isotherm_) {
-    double sum = 0.0;
-    int n = 0;
+    const auto& held = isotherm_->held_out;
+    const auto n = static_cast<double>(std::count(
+        held.begin(), held.begin() + static_cast<std::ptrdiff_t>(r.isotherm.size()), false));
     for (size_t i = 0; i < r.isotherm.size(); ++i) {
-      if (isotherm_->held_out[i]) continue;
-      sum += r.isotherm[i] * r.isotherm[i];
-      ++n;
+      if (!held[i]) out.push_back(std::sqrt(isotherm_->weight / n));
     }
-    if (n > 0) total += isotherm_->weight * sum / n;
   }
   if (elastic_) {
-    double sum = 0.0;
-    int n = 0;
+    const auto n = static_cast<double>(
+        std::count_if(r.elastic.begin(), r.elastic.end(), [](const auto& c) { return c; }));
     for (const auto& c : r.elastic) {
-      if (!c) continue;
-      sum += *c * *c;
-      ++n;
+      if (c) out.push_back(std::sqrt(elastic_->weight / n));
     }
-    if (n > 0) total += elastic_->weight * sum / n;
   }
+  if (surface_ && r.surface) out.push_back(std::sqrt(surface_->weight));
+  return out;
+}
+
+std::vector<double> FitObjective::target_scales() const {
+  Residuals every;
+  if (isotherm_) every.isotherm.assign(isotherm_->volume_per_atom.size(), 0.0);
+  if (elastic_) every.elastic.assign(elastic_modes(*elastic_).size(), 0.0);
+  if (surface_) every.surface = 0.0;
+  return fitted_scales(every);
+}
+
+double FitObjective::value(const Residuals& r) const {
+  const std::vector<double> res = fitted(r), scale = fitted_scales(r);
+  double total = 0.0;
+  for (size_t i = 0; i < res.size(); ++i) total += scale[i] * scale[i] * res[i] * res[i];
   return total;
 }
 
 double FitObjective::max_trained(const Residuals& r) const {
+  // A target of weight 0 is reported, not trained.
+  const std::vector<double> res = fitted(r), scale = fitted_scales(r);
   double m = 0.0;
-  for (size_t i = 0; i < r.isotherm.size(); ++i) {
-    if (!isotherm_->held_out[i]) m = std::max(m, std::abs(r.isotherm[i]));
-  }
-  for (const auto& c : r.elastic) {
-    if (c) m = std::max(m, std::abs(*c));
+  for (size_t i = 0; i < res.size(); ++i) {
+    if (scale[i] > 0.0) m = std::max(m, std::abs(res[i]));
   }
   return m;
 }

@@ -19,6 +19,7 @@ struct Judgement {
   std::vector<double> pressure_error;   // bar, block standard error at each row
   std::optional<double> c11, c12, c44;  // bar
   std::optional<double> c11_error, c12_error, c44_error;
+  std::optional<double> surface_energy_100;  // eV/Å^2, static
   double wall_s = 0.0;
 };
 
@@ -45,23 +46,35 @@ struct Residuals {
   std::vector<double> isotherm;  // (V - V_target) / V_target per row
   // (M - M_target) / M_target per mode of elastic_modes(), when measured.
   std::vector<std::optional<double>> elastic;
+  std::optional<double> surface;  // (gamma - gamma_target) / gamma_target
 };
 
 class FitObjective {
  public:
-  FitObjective(std::optional<IsothermTarget> isotherm, std::optional<ElasticTarget> elastic)
-      : isotherm_(std::move(isotherm)), elastic_(elastic) {}
+  FitObjective(std::optional<IsothermTarget> isotherm, std::optional<ElasticTarget> elastic,
+               std::optional<SurfaceTarget> surface = std::nullopt)
+      : isotherm_(std::move(isotherm)), elastic_(elastic), surface_(surface) {}
 
   [[nodiscard]] Residuals residuals(const Judgement& j) const;
   // w_iso * mean over trained rows of r^2 + w_el * mean over the targeted
-  // modes of r^2. Exactly zero where the judge reproduces the targets.
+  // modes of r^2 + w_surf * r_surf^2. Exactly zero where the judge
+  // reproduces the targets.
   [[nodiscard]] double value(const Residuals& r) const;
+  // The residuals the objective weighs (trained isotherm rows, measured
+  // modes, the surface) and each one's factor: value() is the sum of
+  // (factor * residual)^2.
+  [[nodiscard]] std::vector<double> fitted(const Residuals& r) const;
+  [[nodiscard]] std::vector<double> fitted_scales(const Residuals& r) const;
+  // The factors before any candidate is judged, every target measured.
+  [[nodiscard]] std::vector<double> target_scales() const;
+  // The largest |residual| the objective weighs (weight above 0).
   [[nodiscard]] double max_trained(const Residuals& r) const;
   [[nodiscard]] double max_held_out(const Residuals& r) const;
 
  private:
   std::optional<IsothermTarget> isotherm_;
   std::optional<ElasticTarget> elastic_;
+  std::optional<SurfaceTarget> surface_;
 };
 
 // The objective given to the optimiser for a failed candidate: twice the

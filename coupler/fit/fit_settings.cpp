@@ -59,6 +59,22 @@ Param elastic_param() {
                     "Target: cubic elastic constants of the crystal at the fit's temperature");
 }
 
+Param surface_param() {
+  return Param::map(
+      "surface",
+      {Param::real("energy_100", Dimension::kSurfaceEnergy,
+                   "Target static (100) surface energy, e.g. MD's `1.345 J/m^2` (Mishin's EAM "
+                   "copper); the judge computes the candidate's by dpd_surface_energy")
+           .require()
+           .above(0)
+           .referable(),
+       Param::real("weight", Dimension::kNone, "Weight of the surface energy in the objective")
+           .def(1.0)
+           .at_least(0)},
+      "Target: the (100) surface energy, which the bulk targets leave free and a thin rod "
+      "feels");
+}
+
 Param optimizer_param() {
   return defaulted(Param::map(
       "optimizer",
@@ -251,8 +267,9 @@ void check_fit(const config::StageCheck& c) {
   check_cutoff_near_shell(c);
   const std::string material = c.resolved["material"].Scalar();
   check_free(c, c.materials[material]["potential"]);
-  if (!c.raw["isotherm"] && !c.raw["elastic"]) {
-    c.validator.error(c.raw, c.path, "the fit has no target: give `isotherm`, `elastic` or both");
+  if (!c.raw["isotherm"] && !c.raw["elastic"] && !c.raw["surface"]) {
+    c.validator.error(c.raw, c.path,
+                      "the fit has no target: give `isotherm`, `elastic`, `surface` or several");
   }
   const YAML::Node elastic = c.raw["elastic"];
   if (elastic && elastic.IsMap() && !elastic["c11"] && !elastic["c12"] && !elastic["c44"]) {
@@ -317,7 +334,8 @@ config::StageKindSpec fit_dpd_potential_spec() {
   s.uses = {"dpd_driver"};
   s.doc =
       "Fits a DPD pair style's parameters so that the DPD crystal at a temperature reproduces "
-      "MD targets (isotherm, elastic constants); dpd_driver judges every candidate";
+      "MD targets (isotherm, elastic constants, (100) surface energy); dpd_driver judges every "
+      "candidate";
   s.material_kinds = {"dpd_mesoparticle"};
   s.params = {
       Param::identifier("material",
@@ -330,6 +348,7 @@ config::StageKindSpec fit_dpd_potential_spec() {
           .at_least(0),
       isotherm_param(),
       elastic_param(),
+      surface_param(),
       Param::map_of("free",
                     Param::real_list("bounds", Dimension::kNone,
                                      "[lower, upper] in the parameter's metal unit")
@@ -358,6 +377,10 @@ config::StageKindSpec fit_dpd_potential_spec() {
       {"isotherm", OutputSpec::Shape::kTable, "",
        "Per pressure: target and fitted volume per atom, residual, held out"},
       {"elastic", OutputSpec::Shape::kTable, "", "C11, C12, C44: target and fitted"},
+      {"surface_energy_100", OutputSpec::Shape::kScalar, "J/m^2",
+       "The fitted crystal's static (100) surface energy (with a surface target)"},
+      {"surface_energy_100_target", OutputSpec::Shape::kScalar, "J/m^2",
+       "The surface target (with one)"},
   };
   s.check = check_fit;
   return s;
@@ -407,6 +430,9 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
     if (el["c44"]) t.c44 = el["c44"].as<double>();
     t.weight = el["weight"].as<double>();
     f.elastic = t;
+  }
+  if (const YAML::Node su = stage["surface"]) {
+    f.surface = SurfaceTarget{su["energy_100"].as<double>(), su["weight"].as<double>()};
   }
   const YAML::Node o = stage["optimizer"];
   f.optimizer.global = o["global"].as<std::string>();

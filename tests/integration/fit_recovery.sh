@@ -18,6 +18,9 @@ export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their 
 #  - the degeneracy report finds the line of Sutton-Chen parameters
 #    (epsilon, a, c) that leaves every target as it is, and finds none in
 #    the recovery of epsilon, c and n.
+#  - c recovered from the truth's surface energy alone, handed over in J/m^2
+#    from a dpd_surface_energy stage, to 1e-4, and the fit's surface energy
+#    equal to the truth stage's;
 #  - with the argument `all_free` (validation, about 2.5 minutes) instead:
 #    every parameter the chain frees (epsilon, c, n and m) recovered from
 #    a truth other than copper's (Sutton-Chen gold), each started 12-15 %
@@ -49,6 +52,7 @@ fi
 "$PBMS" run "$cfg/fit_recovery_sutton_chen.yaml" > sc.txt 2>&1 || { cat sc.txt; fail "Sutton-Chen fit"; }
 "$PBMS" run "$cfg/fit_degeneracy_sutton_chen.yaml" > degenerate.txt 2>&1 ||
   { cat degenerate.txt; fail "the degenerate Sutton-Chen fit"; }
+"$PBMS" run "$cfg/fit_recovery_surface.yaml" > surface.txt 2>&1 || { cat surface.txt; fail "the surface fit"; }
 grep -q "\[fit\] evaluation .* evaluations/s | ETA .* best" runs/fit_recovery_morse/log.txt ||
   fail "no progress lines (evaluation n of N, best objective, ETA) in the log"
 # A small budget, judged on one group and on two.
@@ -76,7 +80,8 @@ def truth(config):
     return yaml.safe_load(open(f"{cfg}/{m['potential_file']}"))
 
 for run, config, free in (("fit_recovery_morse", "fit_recovery_morse.yaml", ("d0", "alpha", "r0")),
-                          ("fit_recovery_sutton_chen", "fit_recovery_sutton_chen.yaml", ("epsilon", "c", "n"))):
+                          ("fit_recovery_sutton_chen", "fit_recovery_sutton_chen.yaml", ("epsilon", "c", "n")),
+                          ("fit_recovery_surface", "fit_recovery_surface.yaml", ("c",))):
     t = truth(config)
     start = yaml.safe_load(open(f"{cfg}/{config}"))["materials"]["start"]["potential"]
     fit = yaml.safe_load(open(f"runs/{run}/summary.yaml"))["stages"]["fit"]["results"]
@@ -88,6 +93,14 @@ for run, config, free in (("fit_recovery_morse", "fit_recovery_morse.yaml", ("d0
     written = yaml.safe_load(open(f"runs/{run}/fit/potential.yaml"))
     check(all(written[k] == fit[k]["value"] for k in free) and written["style"] == t["style"],
           f"{run}: fit/potential.yaml holds the fitted parameters")
+
+# The surface target: the judge's surface energy (eV/Å^2 inside the fit)
+# is the dpd_surface_energy stage's, reported back in J/m^2.
+st = yaml.safe_load(open("runs/fit_recovery_surface/summary.yaml"))["stages"]
+truth_gamma = st["surface"]["results"]["surface_energy_100"]["value"]
+fit_gamma = st["fit"]["results"]["surface_energy_100"]["value"]
+check(abs(fit_gamma / truth_gamma - 1) < 1e-6 and st["fit"]["results"]["surface_energy_100"]["unit"] == "J/m^2",
+      f"surface fit: {fit_gamma:.9g} J/m^2 against the truth's {truth_gamma:.9g} J/m^2 (1e-6)")
 
 # The degeneracy report. Sutton-Chen with epsilon, a and c free has a line
 # of parameters with the same static energy (the config says why): the

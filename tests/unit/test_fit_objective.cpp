@@ -101,6 +101,42 @@ TEST(FitObjective, TetragonalShearIsWeighedOnItsOwn) {
   EXPECT_NEAR(*mode_error(ElasticMode::kTetragonalShear, 3.0, 4.0, std::nullopt), 2.5, 1e-14);
 }
 
+// The surface target adds its own weighted square, and the factors the
+// least-squares form and the degeneracy report use give back value().
+TEST(FitObjective, SurfaceEnergyIsATargetOfItsOwn) {
+  const double gamma = 1.345 / 16.021766208;  // Mishin's copper, eV/Å^2
+  const FitObjective f(isotherm(), ElasticTarget{1.7e6, 1.2e6, 7.6e5, 1.0},
+                       SurfaceTarget{gamma, 0.25});
+  Judgement j;
+  j.volume_per_atom = {12.12, 11.9, 11.8, 11.6};  // row 0: +1 %, trained
+  j.c11 = 1.7e6;
+  j.c12 = 1.2e6;
+  j.c44 = 7.6e5;
+  j.surface_energy_100 = 1.5 * gamma;
+  const Residuals r = f.residuals(j);
+  ASSERT_TRUE(r.surface);
+  EXPECT_NEAR(*r.surface, 0.5, 1e-14);
+  // Isotherm: weight 2 over 2 trained rows; surface: weight 0.25.
+  EXPECT_NEAR(f.value(r), 2.0 * 1e-4 / 2.0 + 0.25 * 0.25, 1e-15);
+  EXPECT_NEAR(f.max_trained(r), 0.5, 1e-14);
+  const auto res = f.fitted(r), scale = f.fitted_scales(r);
+  ASSERT_EQ(res.size(), 2u + 3u + 1u);
+  ASSERT_EQ(f.target_scales().size(), res.size());
+  double sum = 0.0;
+  for (size_t i = 0; i < res.size(); ++i) sum += scale[i] * scale[i] * res[i] * res[i];
+  EXPECT_NEAR(sum, f.value(r), 1e-15);
+  EXPECT_EQ(res.back(), *r.surface);
+  // Without a surface target the judged surface energy is ignored.
+  const FitObjective bulk(isotherm(), ElasticTarget{1.7e6, 1.2e6, 7.6e5, 1.0});
+  EXPECT_FALSE(bulk.residuals(j).surface);
+  EXPECT_NEAR(bulk.value(bulk.residuals(j)), 1e-4, 1e-15);
+  // Weight 0: reported, not trained.
+  const FitObjective report(isotherm(), ElasticTarget{1.7e6, 1.2e6, 7.6e5, 1.0},
+                            SurfaceTarget{gamma, 0.0});
+  EXPECT_NEAR(*report.residuals(j).surface, 0.5, 1e-14);
+  EXPECT_NEAR(report.max_trained(report.residuals(j)), 0.01, 1e-14);
+}
+
 TEST(FailurePenalty, TwiceTheWorstSeenAndAtLeastOne) {
   FailurePenalty p;
   EXPECT_EQ(p.value(), 1.0);

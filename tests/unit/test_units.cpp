@@ -17,6 +17,12 @@ TEST(Units, ConvertsToMetal) {
   EXPECT_DOUBLE_EQ(parse_quantity("3846 m/s", Dimension::kVelocity), 38.46);
   EXPECT_DOUBLE_EQ(parse_quantity("0.1 %/ps", Dimension::kRate), 0.001);
   EXPECT_DOUBLE_EQ(parse_quantity("1 nm", Dimension::kLength), 10.0);
+  // 1 J/m^2 = 1 J / 1e20 Å^2 = 6.241509e18 eV / 1e20 Å^2 (the SI's exact eV;
+  // metal units keep CODATA 2014's, 8e-9 away).
+  EXPECT_NEAR(parse_quantity("1 J/m^2", Dimension::kSurfaceEnergy), 6.241509074e-2, 1e-9);
+  EXPECT_NEAR(parse_quantity("1345 mJ/m^2", Dimension::kSurfaceEnergy), 1.345 * 6.241509074e-2,
+              1e-9);
+  EXPECT_NEAR(pbms::units::to_metal(1.0, "J/m^2"), 6.241509074e-2, 1e-9);
 }
 
 TEST(Units, RejectsWrongDimensionAndGarbage) {

@@ -20,17 +20,18 @@ inline constexpr double kJoulePerM2PerEvPerA2 = 16.021766208;
 
 enum class Dimension {
   kNone,
-  kPressure,      // bar
-  kLength,        // Å
-  kTime,          // ps
-  kTemperature,   // K
-  kVelocity,      // Å/ps
-  kEnergy,        // eV
-  kMass,          // g/mol
-  kRate,          // 1/ps
-  kDensity,       // g/cm^3 (LAMMPS metal); solvers use g/mol/Å^3 = 1/kGramPerCm3PerAmuPerA3
-  kAcceleration,  // Å/ps^2
-  kForce,         // eV/Å
+  kPressure,       // bar
+  kLength,         // Å
+  kTime,           // ps
+  kTemperature,    // K
+  kVelocity,       // Å/ps
+  kEnergy,         // eV
+  kMass,           // g/mol
+  kRate,           // 1/ps
+  kDensity,        // g/cm^3 (LAMMPS metal); solvers use g/mol/Å^3 = 1/kGramPerCm3PerAmuPerA3
+  kAcceleration,   // Å/ps^2
+  kForce,          // eV/Å
+  kSurfaceEnergy,  // eV/Å^2 (an energy per area, also a line tension's force per length)
 };
 
 // Canonical symbol of a dimension in metal units ("bar", "Å", ...).

@@ -41,6 +41,7 @@ constexpr std::pair<units::Dimension, std::string_view> kDimNames[] = {
     {units::Dimension::kDensity, "density"},
     {units::Dimension::kAcceleration, "acceleration"},
     {units::Dimension::kForce, "force"},
+    {units::Dimension::kSurfaceEnergy, "surface_energy"},
 };
 
 Param make(std::string name, ParamKind kind, std::string doc) {
