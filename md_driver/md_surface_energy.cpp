@@ -65,7 +65,7 @@ void SurfaceEnergyStage::run(StageContext& ctx) {
   const std::array<int, 3>& cells = prm.cells;
   Lammps lmp(ctx.comm(), ctx.stage_dir() / "lammps.log");
   build_crystal(lmp, mat, mat.lattice_constant, cells, "p p p");
-  lmp.command("thermo_style custom step pe atoms lx ly lz");
+  lmp.command("thermo_style custom step pe atoms lx ly lz zlo zhi");
   // The bulk at zero pressure: its box relaxed, as md_elastic's reference.
   lmp.command("fix relax all box/relax iso 0.0 vmax 0.001");
   lmp.command("minimize 0 1e-12 10000 100000");
@@ -75,10 +75,12 @@ void SurfaceEnergyStage::run(StageContext& ctx) {
   const double bulk = lmp.thermo("pe") / atoms;
   const double area = lmp.thermo("lx") * lmp.thermo("ly");
   const double lattice = lmp.thermo("lx") / cells[0];
-  // Opened: z no longer periodic, with room above the slab for the faces
-  // to relax into. Every atom keeps its site.
-  const double lz = lmp.thermo("lz");
-  lmp.command(fmt::format("change_box all z final 0 {:.10g} boundary p p f", 2.0 * lz));
+  // Opened: z no longer periodic, with room on both sides of the slab for
+  // the faces to relax into. Every atom keeps its site. (The box relaxation
+  // moved both ends of the box, so the room is taken from where they are.)
+  const double lz = lmp.thermo("lz"), zlo = lmp.thermo("zlo"), zhi = lmp.thermo("zhi");
+  lmp.command(fmt::format("change_box all z final {:.10g} {:.10g} boundary p p f", zlo - 0.5 * lz,
+                          zhi + 0.5 * lz));
   lmp.command("run 0");
   const auto gamma = [&] {
     return (lmp.thermo("pe") - atoms * bulk) / (2.0 * area) * units::kJoulePerM2PerEvPerA2;
