@@ -166,6 +166,12 @@ class Fit {
     e.temperature = temperature;
     for (size_t k = 0; k < x.size(); ++k) e.params.push_back(from_unit(k, x[k]));
     if (auto recorded = journal_.replay(phase, temperature, e.params)) {
+      if (s_.surface && recorded->ok && !recorded->surface_energy_100) {
+        throw Error(
+            "evaluations.journal: the recorded candidates have no surface energy, but this fit "
+            "has a surface target: this is not the fit that was recorded. Start a new run "
+            "instead of --resume");
+      }
       e.judgement = *recorded;
     } else {
       e.judgement = judge_.judge(potential_of(e.params), temperature);
@@ -281,7 +287,9 @@ class Fit {
   }
 
   void least_squares(double temperature, int evaluations, const std::vector<double>& start) {
-    if (fitted_count() < s_.free.size()) {
+    const std::vector<double> scales = objective_.target_scales();
+    if (static_cast<size_t>(std::count_if(scales.begin(), scales.end(),
+                                          [](double w) { return w > 0.0; })) < s_.free.size()) {
       throw Error("levenberg_marquardt needs at least as many fitted targets as free parameters");
     }
     LeastSquares f{this, temperature};
@@ -392,7 +400,18 @@ class Fit {
     if (!(s_.judge.temperature > 0.0) || !jacobian) {
       return std::vector<double>(s_.free.size(), kNaN);
     }
-    return parameter_errors(*jacobian, residual_errors(evaluations_[best].judgement));
+    // Only the residuals with a sampling error carry it into the
+    // parameters: the static surface energy has none.
+    const std::vector<double> all = residual_errors(evaluations_[best].judgement);
+    Jacobian rows;
+    std::vector<double> errors;
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (!(all[i] > 0.0)) continue;
+      rows.push_back((*jacobian)[i]);
+      errors.push_back(all[i]);
+    }
+    if (rows.empty()) return std::vector<double>(s_.free.size(), kNaN);
+    return parameter_errors(rows, errors);
   }
 
   // The Jacobian per step of a parameter's whole bounds, rows weighed as

@@ -249,6 +249,38 @@ void check_cutoff_near_shell(const config::StageCheck& c) {
   }
 }
 
+// A surface energy given as a number: a bare one is eV/Å^2 (metal units), so
+// 1.345 meant as J/m^2 is 16 times too large. Metals' (100) faces lie
+// between about 0.5 and 4 J/m^2 (Mishin's copper 1.345, EAM nickel 3.44).
+void check_surface_target(const config::StageCheck& c) {
+  const YAML::Node raw = c.raw["surface"];
+  if (!raw || !raw.IsMap()) return;
+  const YAML::Node energy = raw["energy_100"];
+  if (energy && energy.IsScalar()) {
+    const double j =
+        c.resolved["surface"]["energy_100"].as<double>() * units::kJoulePerM2PerEvPerA2;
+    if (j < 0.05 || j > 10.0) {
+      c.validator.error(energy, c.path + ".surface.energy_100",
+                        fmt::format("{:g} J/m^2 is no metal's surface energy (0.05 to 10 J/m^2); a "
+                                    "bare number is eV/Å^2: write the unit, e.g. `1.345 J/m^2`",
+                                    j));
+    }
+  }
+}
+
+// Every target weighed 0 leaves nothing to fit: the objective is 0 wherever
+// the optimiser goes.
+void check_some_weight(const config::StageCheck& c) {
+  for (const char* t : {"isotherm", "elastic", "surface"}) {
+    const YAML::Node target = c.resolved[t];
+    if (target && target.IsMap() && target["weight"] && target["weight"].as<double>() > 0.0) return;
+  }
+  if (!c.raw["isotherm"] && !c.raw["elastic"] && !c.raw["surface"]) return;  // reported below
+  c.validator.error(c.raw, c.path,
+                    "every target has weight 0: give at least one a weight above 0 (weight 0 "
+                    "reports a target without fitting it)");
+}
+
 void check_group_ranks(const config::StageCheck& c) {
   const YAML::Node g = c.resolved["group_ranks"];
   const YAML::Node dpd = c.workflow["launch"] ? c.workflow["launch"]["dpd"] : YAML::Node();
@@ -265,6 +297,8 @@ void check_fit(const config::StageCheck& c) {
   check_target_magnitudes(c);
   check_group_ranks(c);
   check_cutoff_near_shell(c);
+  check_surface_target(c);
+  check_some_weight(c);
   const std::string material = c.resolved["material"].Scalar();
   check_free(c, c.materials[material]["potential"]);
   if (!c.raw["isotherm"] && !c.raw["elastic"] && !c.raw["surface"]) {

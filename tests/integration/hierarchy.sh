@@ -19,7 +19,7 @@ source "$(dirname "$0")/lib.sh"
 #    dynamic modulus that depends on the whole stiffness tensor
 #    (docs/hierarchy.md);
 #  - a second run under a new name whose fit section differs (another
-#    optimiser budget) runs no LAMMPS: both MD stages come from the cache.
+#    optimiser budget) runs no LAMMPS: the three MD stages come from the cache.
 start=$(date +%s)
 "$PBMS" run "$ROOT/configs/hierarchy.yaml" > out.txt 2>&1 || { cat out.txt; fail "run"; }
 echo "wall time of hierarchy.yaml: $(( $(date +%s) - start )) s"
@@ -64,11 +64,11 @@ c.check(abs(fit["surface_energy_100"]["value"] / gamma - 1) < 1e-9,
 print(f"info the fitted model's (100) surface energy {gamma:.2f} J/m^2 against MD's {gamma_md:.3f} "
       f"(reported, weight 0: docs/hierarchy.md, \"A surface target\")")
 log = open(f"{refit}/log.txt").read()
-for stage in ("isotherm", "elastic_md"):
+for stage in ("isotherm", "elastic_md", "surface_md"):
     c.check(f"stage '{stage}' reused from the cache" in log, f"refit: {stage} reused from the cache")
 # A stage md_driver ran ends with "finished in"; a cached one says where it
 # was computed instead.
-ran = [st for st in ("isotherm", "elastic_md") if f"stage '{st}' finished in" in log]
+ran = [st for st in ("isotherm", "elastic_md", "surface_md") if f"stage '{st}' finished in" in log]
 c.check(not ran, f"refit: no MD stage ran LAMMPS ({', '.join(ran) or 'none'} did)")
 r2 = yaml.safe_load(open(f"{refit}/summary.yaml"))["stages"]
 c.check(r2["elastic_md"]["results"]["c11_at_t"]["value"] == md["c11_at_t"]["value"], "refit: the same MD C11 at 298 K")
