@@ -1,11 +1,11 @@
 #include "scheduler.hpp"
 
 #include <algorithm>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "pbms/error.hpp"
+#include "pbms/mpi/polling_pause.hpp"
 
 namespace pbms::coupler {
 
@@ -145,16 +145,15 @@ std::optional<Answer> Scheduler::poll_once() {
   return std::nullopt;
 }
 
-// Polls with a growing pause (0.1 to 20 ms): the coupler shares cores with
+// Polls with mpi::PollingPause between tries: the coupler shares cores with
 // the drivers and must not spin.
 std::optional<Answer> Scheduler::next(std::chrono::milliseconds timeout) {
   const auto deadline = Clock::now() + timeout;
-  auto pause = std::chrono::microseconds(100);
+  mpi::PollingPause pause;
   for (;;) {
     if (auto a = poll_once()) return a;
     if (Clock::now() >= deadline) return std::nullopt;
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(20000));
+    pause.sleep();
   }
 }
 

@@ -1,11 +1,9 @@
 #include "pbms/mpi/comm.hpp"
 
-#include <chrono>
-#include <thread>
-
 #include <fmt/format.h>
 
 #include "pbms/error.hpp"
+#include "pbms/mpi/polling_pause.hpp"
 
 namespace pbms::mpi {
 
@@ -52,13 +50,12 @@ void Comm::reset() {
 }
 
 void wait_gently(MPI_Request& request, MPI_Status* status) {
-  auto pause = std::chrono::microseconds(50);
+  PollingPause pause;
   for (;;) {
     int done = 0;
     check(MPI_Test(&request, &done, status), "MPI_Test");
     if (done) return;
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(20000));
+    pause.sleep();
   }
 }
 

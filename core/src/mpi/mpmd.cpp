@@ -2,14 +2,14 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <thread>
 
 #include <fmt/format.h>
+
+#include "pbms/mpi/polling_pause.hpp"
 
 namespace pbms::mpi {
 namespace {
@@ -149,11 +149,10 @@ std::optional<protocol::Message> Channel::poll(int* source) const {
 }
 
 protocol::Message Channel::receive(int* source) const {
-  auto pause = std::chrono::microseconds(50);
+  PollingPause pause;
   for (;;) {
     if (auto m = poll(source)) return std::move(*m);
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(20000));
+    pause.sleep();
   }
 }
 

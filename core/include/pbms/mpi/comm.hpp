@@ -51,7 +51,7 @@ class Comm {
 
 // MPI's blocking calls spin a core while they wait. PBMS runs programs
 // oversubscribed (coupler + drivers on few cores), so idle processes poll
-// with a growing sleep instead: at most ~20 ms latency, no stolen cycles.
+// with a sleep between tries instead (mpi::PollingPause).
 void wait_gently(MPI_Request& request, MPI_Status* status = MPI_STATUS_IGNORE);
 // Broadcast that idles gently while waiting.
 void bcast_gently(void* data, int count, MPI_Datatype type, int root, MPI_Comm comm);
