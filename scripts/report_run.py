@@ -355,10 +355,14 @@ def fit_parameters(stage):
     return out
 
 
-def at_bound(value, lo, hi):
-    """Within 0.1 % of the range from a bound: the optimum may lie beyond it."""
+def at_bound(value, lo, hi, log_scale=False):
+    """Within 0.1 % of the range from a bound, the range the optimiser
+    searched (the logarithm's with optimizer.scale: log): the optimum may
+    lie beyond it."""
     if value is None or lo is None or hi is None or hi <= lo:
         return None
+    if log_scale and lo > 0 and value > 0:
+        value, lo, hi = math.log(value), math.log(lo), math.log(hi)
     tol = 1e-3 * (hi - lo)
     if value <= lo + tol:
         return "lower"
@@ -371,8 +375,10 @@ def fit_bound_warnings(stage):
     if stage.kind != "fit_dpd_potential":
         return []
     out = []
+    optimizer = stage.config.get("optimizer")
+    log_scale = isinstance(optimizer, dict) and optimizer.get("scale") == "log"
     for name, value, lo, hi in fit_parameters(stage):
-        side = at_bound(value, lo, hi)
+        side = at_bound(value, lo, hi, log_scale)
         if side:
             out.append(f"parameter {name} = {value:.6g} ended at its {side} bound "
                        f"[{lo:g}, {hi:g}]: the best fit may lie outside the bounds")

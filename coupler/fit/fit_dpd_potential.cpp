@@ -145,13 +145,23 @@ class Fit {
     return std::max(n, 1);
   }
 
+  // The optimisers search the unit box: each parameter between its bounds,
+  // linear or (optimizer.scale: log) in its logarithm.
   double to_unit(size_t k, double v) const {
     const auto& f = s_.free[k];
-    return f.upper > f.lower ? (v - f.lower) / (f.upper - f.lower) : 0.0;
+    if (!(f.upper > f.lower)) return 0.0;
+    if (s_.optimizer.log_scale) return std::log(v / f.lower) / std::log(f.upper / f.lower);
+    return (v - f.lower) / (f.upper - f.lower);
   }
   double from_unit(size_t k, double u) const {
     const auto& f = s_.free[k];
+    if (s_.optimizer.log_scale) return f.lower * std::pow(f.upper / f.lower, u);
     return f.lower + u * (f.upper - f.lower);
+  }
+  // dv/du at v: how far a unit step of the search moves the parameter.
+  double unit_span(size_t k, double v) const {
+    const auto& f = s_.free[k];
+    return s_.optimizer.log_scale ? v * std::log(f.upper / f.lower) : f.upper - f.lower;
   }
 
   YAML::Node potential_of(const std::vector<double>& params) const {
@@ -418,11 +428,17 @@ class Fit {
   // the objective weighs them.
   Degeneracy degeneracy(size_t best, const std::optional<Jacobian>& jacobian) const {
     if (!jacobian) return {};
+    const std::vector<double>& at = evaluations_[best].params;
     Jacobian unit = *jacobian;
     for (auto& row : unit) {
-      for (size_t k = 0; k < row.size(); ++k) row[k] *= s_.free[k].upper - s_.free[k].lower;
+      for (size_t k = 0; k < row.size(); ++k) row[k] *= unit_span(k, at[k]);
     }
-    return degeneracy_of(unit, objective_.fitted_scales(evaluations_[best].residuals));
+    Degeneracy d = degeneracy_of(unit, objective_.fitted_scales(evaluations_[best].residuals));
+    // The directions as parameter steps per unit step of the search.
+    for (auto& v : d.directions) {
+      for (size_t k = 0; k < v.size(); ++k) v[k] *= unit_span(k, at[k]);
+    }
+    return d;
   }
 
   void report(size_t best, const std::vector<double>& errors, const Degeneracy& degeneracy) {
@@ -466,16 +482,14 @@ class Fit {
     const std::string& style = s_.style;
     for (size_t k = 0; k < s_.free.size(); ++k) {
       std::vector<double> step;
-      for (const auto& v : d.directions)
-        step.push_back(v[k] * (s_.free[k].upper - s_.free[k].lower));
+      for (const auto& v : d.directions) step.push_back(v[k]);
       r.add_column("degeneracy", "d_" + s_.free[k].name,
                    parameter_unit(potential_schema_, style, s_.free[k].name), step);
     }
     const auto& weakest = d.directions.back();
     std::string along;
     for (size_t k = 0; k < s_.free.size(); ++k) {
-      along += fmt::format(" {} {:+.3g}", s_.free[k].name,
-                           weakest[k] * (s_.free[k].upper - s_.free[k].lower));
+      along += fmt::format(" {} {:+.3g}", s_.free[k].name, weakest[k]);
     }
     ctx_.log(fmt::format(
         "Jacobian singular values {:.3g} (condition number {:.3g}); the weakest direction, per "

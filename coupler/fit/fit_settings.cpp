@@ -105,7 +105,13 @@ Param optimizer_param() {
        Param::boolean("static_prefit",
                       "Judge the global search on the static (0 K) crystal, which costs "
                       "milliseconds; the local polish runs at the fit's temperature")
-           .def(false)},
+           .def(false),
+       Param::choice("scale", {"linear", "log"},
+                     "The search's coordinates: each parameter linear between its bounds, or "
+                     "its logarithm (every lower bound > 0), so that bounds spanning decades "
+                     "are searched by factors, as evenly at their low end as at their high "
+                     "end; x_tolerance is then a fraction of ln(upper/lower)")
+           .def("linear")},
       "The optimiser (NLopt), seeded by the run's seed"));
 }
 
@@ -145,6 +151,8 @@ void check_free(const config::StageCheck& c, const YAML::Node& potential) {
   const Param* schema = potential_schema(c.drivers);
   if (!schema) return;  // no dpd_driver: the stage kind is refused already
   const std::string style = potential["style"].Scalar();
+  const YAML::Node scale = c.resolved["optimizer"]["scale"];
+  const bool log_scale = scale && scale.Scalar() == "log";
   for (const auto& kv : raw_free) {
     const std::string name = kv.first.Scalar();
     const std::string path = c.path + ".free." + name;
@@ -161,6 +169,13 @@ void check_free(const config::StageCheck& c, const YAML::Node& potential) {
                         fmt::format("lower bound {} is not below upper bound {}: a free "
                                     "parameter needs room (to hold it, leave it out of `free`)",
                                     bounds[0], bounds[1]));
+      continue;
+    }
+    if (log_scale && !(bounds[0] > 0.0)) {
+      c.validator.error(kv.second, path,
+                        fmt::format("lower bound {} is not above 0, which optimizer.scale: log "
+                                    "needs (it searches the parameter's logarithm)",
+                                    bounds[0]));
       continue;
     }
     const double start = potential[name].as<double>();
@@ -476,6 +491,7 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
   f.optimizer.x_tolerance = o["x_tolerance"].as<double>();
   f.optimizer.f_tolerance = o["f_tolerance"].as<double>();
   f.optimizer.static_prefit = o["static_prefit"].as<bool>();
+  f.optimizer.log_scale = o["scale"].as<std::string>() == "log";
   f.judge.sampling = config::CrystalSampling::from_yaml(stage["judge"]);
   f.group_ranks = stage["group_ranks"].as<int>();
   return f;

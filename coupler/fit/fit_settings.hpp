@@ -52,6 +52,7 @@ struct OptimizerSettings {
   double x_tolerance = 1e-4;  // relative, in the unit box of the bounds
   double f_tolerance = 1e-10;
   bool static_prefit = false;  // global search on the static (0 K) crystal
+  bool log_scale = false;      // search in ln(parameter) between ln(bounds)
 };
 
 // What every judging request shares besides the candidate's potential.

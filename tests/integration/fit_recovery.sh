@@ -18,6 +18,8 @@ export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their 
 #  - the degeneracy report finds the line of Sutton-Chen parameters
 #    (epsilon, a, c) that leaves every target as it is, and finds none in
 #    the recovery of epsilon, c and n.
+#  - the Sutton-Chen recovery and the degenerate fit again with the search
+#    in the parameters' logarithms (optimizer.scale: log), held to the same;
 #  - c recovered from the truth's surface energy alone, handed over in J/m^2
 #    from a dpd_surface_energy stage, to 1e-4, and the fit's surface energy
 #    equal to the truth stage's;
@@ -53,6 +55,16 @@ fi
 "$PBMS" run "$cfg/fit_degeneracy_sutton_chen.yaml" > degenerate.txt 2>&1 ||
   { cat degenerate.txt; fail "the degenerate Sutton-Chen fit"; }
 "$PBMS" run "$cfg/fit_recovery_surface.yaml" > surface.txt 2>&1 || { cat surface.txt; fail "the surface fit"; }
+# The Sutton-Chen recovery and the degenerate fit again, searching the
+# parameters' logarithms (optimizer.scale: log).
+sed -e 's/name: fit_recovery_sutton_chen/name: fit_recovery_sutton_chen_log/' \
+    -e 's/f_tolerance: 1.0e-16}/f_tolerance: 1.0e-16, scale: log}/' "$cfg/fit_recovery_sutton_chen.yaml" > sc_log.yaml
+sed -e 's/name: fit_degeneracy_sutton_chen/name: fit_degeneracy_sutton_chen_log/' \
+    -e 's/optimizer: {global: none, local: none}/optimizer: {global: none, local: none, scale: log}/' \
+    "$cfg/fit_degeneracy_sutton_chen.yaml" > degenerate_log.yaml
+grep -q "scale: log" sc_log.yaml && grep -q "scale: log" degenerate_log.yaml || fail "the log-scale configs"
+"$PBMS" run sc_log.yaml > sc_log.txt 2>&1 || { cat sc_log.txt; fail "Sutton-Chen fit, log scale"; }
+"$PBMS" run degenerate_log.yaml > degenerate_log.txt 2>&1 || { cat degenerate_log.txt; fail "degenerate fit, log scale"; }
 grep -q "\[fit\] evaluation .* evaluations/s | ETA .* best" runs/fit_recovery_morse/log.txt ||
   fail "no progress lines (evaluation n of N, best objective, ETA) in the log"
 # A small budget, judged on one group and on two.
@@ -81,6 +93,7 @@ def truth(config):
 
 for run, config, free in (("fit_recovery_morse", "fit_recovery_morse.yaml", ("d0", "alpha", "r0")),
                           ("fit_recovery_sutton_chen", "fit_recovery_sutton_chen.yaml", ("epsilon", "c", "n")),
+                          ("fit_recovery_sutton_chen_log", "fit_recovery_sutton_chen.yaml", ("epsilon", "c", "n")),
                           ("fit_recovery_surface", "fit_recovery_surface.yaml", ("c",))):
     t = truth(config)
     start = yaml.safe_load(open(f"{cfg}/{config}"))["materials"]["start"]["potential"]
@@ -109,23 +122,26 @@ check(abs(fit_gamma / truth_gamma - 1) < 1e-6 and st["fit"]["results"]["surface_
 # The recovery of epsilon, c and n is determined: its smallest singular
 # value stands well clear of zero.
 import numpy as np
-for run in ("fit_degeneracy_sutton_chen", "fit_recovery_sutton_chen"):
+for run in ("fit_degeneracy_sutton_chen", "fit_recovery_sutton_chen",
+            "fit_degeneracy_sutton_chen_log", "fit_recovery_sutton_chen_log"):
     r = yaml.safe_load(open(f"runs/{run}/summary.yaml"))["stages"]["fit"]["results"]
     s = h5py.File(f"runs/{run}/results.h5")["fit/degeneracy/singular_value"][:]
     print(f"     {run}: singular values {', '.join(f'{x:.3g}' for x in s)}, "
           f"condition number {r['jacobian_condition_number']['value']:.3g}")
-r = yaml.safe_load(open("runs/fit_degeneracy_sutton_chen/summary.yaml"))["stages"]["fit"]["results"]
-g = h5py.File("runs/fit_degeneracy_sutton_chen/results.h5")["fit/degeneracy"]
-s = g["singular_value"][:]
-weakest = np.array([g["d_epsilon"][-1], g["d_a"][-1], g["d_c"][-1]])
-eps, a, c, n, m = r["epsilon"]["value"], r["a"]["value"], r["c"]["value"], 9, 6
-line = np.array([-n * eps, a, (n - m / 2) * c])
-cosine = abs(weakest @ line) / np.linalg.norm(weakest) / np.linalg.norm(line)
-check(r["objective"]["value"] < 1e-10, f"degenerate fit: the targets are met (objective {r['objective']['value']:.1e})")
-check(s[-1] < 1e-4 * s[-2], f"degenerate fit: smallest singular value {s[-1]:.2e} against the next {s[-2]:.2e} (below 1e-4 of it)")
-check(cosine > 0.9999, f"degenerate fit: the weakest direction lies along the invariant line (|cos| = {cosine:.6f})")
-s = h5py.File("runs/fit_recovery_sutton_chen/results.h5")["fit/degeneracy/singular_value"][:]
-check(s[-1] > 1e-3 * s[0], f"determined fit: smallest singular value {s[-1]:.2e}, above 1e-3 of the largest {s[0]:.2e}")
+for run in ("fit_degeneracy_sutton_chen", "fit_degeneracy_sutton_chen_log"):
+    r = yaml.safe_load(open(f"runs/{run}/summary.yaml"))["stages"]["fit"]["results"]
+    g = h5py.File(f"runs/{run}/results.h5")["fit/degeneracy"]
+    s = g["singular_value"][:]
+    weakest = np.array([g["d_epsilon"][-1], g["d_a"][-1], g["d_c"][-1]])
+    eps, a, c, n, m = r["epsilon"]["value"], r["a"]["value"], r["c"]["value"], 9, 6
+    line = np.array([-n * eps, a, (n - m / 2) * c])
+    cosine = abs(weakest @ line) / np.linalg.norm(weakest) / np.linalg.norm(line)
+    check(r["objective"]["value"] < 1e-10, f"{run}: the targets are met (objective {r['objective']['value']:.1e})")
+    check(s[-1] < 1e-4 * s[-2], f"{run}: smallest singular value {s[-1]:.2e} against the next {s[-2]:.2e} (below 1e-4 of it)")
+    check(cosine > 0.9999, f"{run}: the weakest direction, in parameter steps, lies along the invariant line (|cos| = {cosine:.6f})")
+for run in ("fit_recovery_sutton_chen", "fit_recovery_sutton_chen_log"):
+    s = h5py.File(f"runs/{run}/results.h5")["fit/degeneracy/singular_value"][:]
+    check(s[-1] > 1e-3 * s[0], f"{run}: determined, smallest singular value {s[-1]:.2e}, above 1e-3 of the largest {s[0]:.2e}")
 
 # Failed candidates: recorded with status 0, a penalty and a reason.
 h = h5py.File("runs/fit_recovery_morse/results.h5")["fit"]
