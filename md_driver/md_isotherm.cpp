@@ -61,7 +61,8 @@ config::StageKindSpec IsothermStage::spec() {
   };
   s.outputs = {
       {"lattice_parameter", OutputSpec::Shape::kScalar, "Å",
-       "Mean lattice parameter at the lowest pressure"},
+       "Mean lattice parameter at the pressure nearest zero (the lowest where none is "
+       "negative): the crystal's own, which md_elastic and md_tension start from"},
       {"bulk_modulus", OutputSpec::Shape::kScalar, "GPa", "B0 of the Birch-Murnaghan fit"},
       {"bulk_modulus_derivative", OutputSpec::Shape::kScalar, "1", "B0' of the fit"},
       {"equilibrium_volume", OutputSpec::Shape::kScalar, "Å^3", "V0 per atom of the fit (P = 0)"},
@@ -226,12 +227,15 @@ void report_isotherm(StageContext& ctx, const IsothermParams& prm, const MdMater
     ratio_err.push_back(t.vol_err[i] / fit.v0);
   }
   const auto& pressures = prm.pressures;
-  size_t lowest = 0;
+  // Nearest zero rather than lowest: an isotherm that holds states in
+  // tension (negative pressures, as a fit's target can) must not hand the
+  // stretched crystal's lattice to the stages that want the crystal at rest.
+  size_t nearest_zero = 0;
   for (size_t i = 1; i < pressures.size(); ++i) {
-    if (pressures[i] < pressures[lowest]) lowest = i;
+    if (std::abs(pressures[i]) < std::abs(pressures[nearest_zero])) nearest_zero = i;
   }
   auto& r = ctx.results();
-  r.add_scalar("lattice_parameter", t.alat[lowest], "Å", t.alat_err[lowest]);
+  r.add_scalar("lattice_parameter", t.alat[nearest_zero], "Å", t.alat_err[nearest_zero]);
   r.add_scalar("bulk_modulus", fit.b0 / units::kBarPerGPa, "GPa");
   r.add_scalar("bulk_modulus_derivative", fit.b0_prime, "1");
   r.add_scalar("equilibrium_volume", fit.v0, "Å^3");

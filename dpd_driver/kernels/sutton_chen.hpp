@@ -8,9 +8,23 @@
 // leaves ρ unchanged to first order), so a free p lets a fit move B apart
 // from C' and C44, which nickel's constants need (docs/hierarchy.md).
 //
+// A knee below the crystal's density (optional): the embedding gains
+//   λ ρc^p (k − ρ/ρc)^3   where ρ < k ρc,
+// ρc being the density of a site of the perfect fcc crystal of lattice
+// constant a (the sum within the cutoff). The term and its first two
+// derivatives vanish at the knee k, so the crystal above k ρc keeps Sutton
+// and Chen's form, and a site that has lost neighbours (a (100) surface site
+// holds about two thirds of ρc) loses less embedding energy. It was built to
+// lower a coarse-grained copper's surface energy with C44 kept, and it does,
+// but only by taking away the crystal's strength under dilation: with MD's
+// tensile states among the fit's targets it gains nothing over the plain
+// form (docs/hierarchy.md, "A knee in the embedding"). λ = 0 (the default)
+// is the plain form, to the same bits.
+//
 // Forces are pairwise central, so the pair loop and its virial apply:
 //   −(dE/dr_ij)/r_ij = ε [n (a/r)^n − c m (a/r)^m (g_i + g_j)] / r²,
-// with g_i = p ρ_i^(p−1), after a first pass over the list has summed ρ.
+// with g_i = dF/dρ at ρ_i (F the embedding), after a first pass over the
+// list has summed ρ.
 // Another program's points paired with the particles (a concurrent run's
 // partners) are no list rows, so their sums would be partial: each takes the
 // mean g of the particles it pairs with, which share its crystal.
@@ -51,20 +65,27 @@ class SuttonChen final : public PairStyle {
   };
 
   // Parameters: epsilon (eV, > 0), a (Å, > 0), n > 0, m > 0, c (> 0),
-  // cutoff (Å, > 0), p (optional, 0 < p < 1, default 1/2).
+  // cutoff (Å, > 0), p (optional, 0 < p < 1, default 1/2), knee (optional,
+  // > 0, default 1) and flattening (optional, >= 0, default 0).
   static std::unique_ptr<PairStyle> create(const PairStyleParameters& params);
   // The keys of a potential map of this style, and what it computes.
   static std::vector<config::Param> params();
   static constexpr std::string_view kDoc =
-      "eps [sum (a/r)^n - c sum_i rho_i^p], rho_i = sum_j (a/r_ij)^m, p = 1/2 by default";
+      "eps [sum (a/r)^n - c sum_i F(rho_i)], rho_i = sum_j (a/r_ij)^m, F = rho^p (p = 1/2 by "
+      "default) + flattening rho_c^p (knee - rho/rho_c)^3 below the knee";
 
-  SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff, double p = 0.5);
+  SuttonChen(double epsilon, double a, double n, double m, double c, double cutoff, double p = 0.5,
+             double knee = 1.0, double flattening = 0.0);
 
   [[nodiscard]] double cutoff() const override { return cutoff_; }
   [[nodiscard]] std::string_view name() const override { return kStyle; }
 
   // ρ_i of the last compute(), one per particle; complete for owned ones.
   [[nodiscard]] const std::vector<double>& density() const { return density_; }
+
+  // ρc: the density of a site of the perfect fcc crystal of lattice constant
+  // a, summed within the cutoff; the knee is a fraction of it.
+  [[nodiscard]] double crystal_density() const { return crystal_density_; }
 
  protected:
   PairResult compute_forces(DpdParticles& particles, const HalfNeighbourList& list, Tally tally,
@@ -76,12 +97,18 @@ class SuttonChen final : public PairStyle {
 
   // ρ^p and dρ^p/dρ; the square root where p = 1/2, so that Sutton and
   // Chen's own form runs as fast and to the same bits as before p existed.
-  [[nodiscard]] double embedding(double rho) const;
-  [[nodiscard]] double embedding_slope(double rho, double embedded) const;
+  [[nodiscard]] double power(double rho) const;
+  [[nodiscard]] double power_slope(double rho, double powered) const;
+  // The knee's term of the embedding and its slope; 0 at and above the knee.
+  [[nodiscard]] double knee_term(double rho) const;
+  [[nodiscard]] double knee_slope(double rho) const;
 
   Kernel kernel_;
   double cutoff_;
   double p_;
+  double crystal_density_;
+  double knee_;
+  double knee_scale_;  // λ ρc^p
   std::vector<double> density_;
   std::vector<double> embedding_slope_;
 };

@@ -144,8 +144,9 @@ std::unique_ptr<PairStyle> make_morse(bool shift) {
 std::unique_ptr<PairStyle> make_lj_nm() {
   return std::make_unique<LjNm>(0.4, 5.11, 12.0, 6.0, kCutoff, true);
 }
-std::unique_ptr<PairStyle> make_sutton_chen(double p = 0.5) {
-  return std::make_unique<SuttonChen>(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff, p);
+std::unique_ptr<PairStyle> make_sutton_chen(double p = 0.5, double knee = 1.0,
+                                            double flattening = 0.0) {
+  return std::make_unique<SuttonChen>(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff, p, knee, flattening);
 }
 
 // A Morse table from 3 to 8 Å: rows every 0.01 Å, one row at 3.005 Å (so the
@@ -185,6 +186,9 @@ TEST(DpdPairStyles, ForcesAreMinusTheEnergyGradient) {
   expect_forces_are_minus_energy_gradient(*make_table(false), periodic_box(), 5);
   expect_forces_are_minus_energy_gradient(*make_table(true), periodic_box(), 6);
   expect_forces_are_minus_energy_gradient(*make_sutton_chen(0.7), periodic_box(), 7);
+  // The knee: above every particle's density, and near the box's densities.
+  expect_forces_are_minus_energy_gradient(*make_sutton_chen(0.5, 5.0, 0.2), periodic_box(), 8);
+  expect_forces_are_minus_energy_gradient(*make_sutton_chen(0.7, 0.3, 2.0), periodic_box(), 9);
 }
 
 TEST(DpdPairStyles, VirialIsTheSumOfPairOuterProducts) {
@@ -199,6 +203,7 @@ TEST(DpdPairStyles, PeriodicVirialIsMinusTheStrainDerivativeOfEnergy) {
   expect_virial_is_minus_strain_derivative(*make_lj_nm());
   expect_virial_is_minus_strain_derivative(*make_sutton_chen());
   expect_virial_is_minus_strain_derivative(*make_sutton_chen(0.7));
+  expect_virial_is_minus_strain_derivative(*make_sutton_chen(0.5, 5.0, 0.2));
   expect_virial_is_minus_strain_derivative(*make_table(false));
 }
 
@@ -304,6 +309,36 @@ TEST(DpdPairStyles, SuttonChenDimerEnergy) {
   EXPECT_NEAR(dimer(embedded, r).first,
               0.0124 * (std::pow(3.61 / r, 9.0) - 39.4 * 2.0 * std::pow(rho, 0.7)), 1e-13);
   EXPECT_THROW(SuttonChen(0.0124, 3.61, 9.0, 6.0, 39.4, kCutoff, 1.0), pbms::Error);
+}
+
+// The knee's term, recomputed here: rho_c from the fcc shells within the
+// cutoff (12 at a/sqrt2, 6 at a, 24 at a sqrt(3/2), 12 at a sqrt2, 24 at
+// a sqrt(5/2), 8 at a sqrt3, ...), and the dimer's density far below it.
+TEST(DpdPairStyles, SuttonChenKneeFlattensTheEmbeddingBelowTheCrystalDensity) {
+  const double a = 3.61, m = 6.0, knee = 0.9, flattening = 0.4;
+  double rho_c = 0.0;
+  const std::pair<int, double> shells[] = {{12, 0.5}, {6, 1.0},  {24, 1.5}, {12, 2.0},
+                                           {24, 2.5}, {8, 3.0},  {48, 3.5}, {6, 4.0},
+                                           {36, 4.5}, {24, 5.0}, {24, 5.5}, {24, 6.0}};
+  for (const auto& [count, s2] : shells) {
+    if (s2 * a * a < kCutoff * kCutoff) rho_c += count * std::pow(s2, -0.5 * m);
+  }
+  SuttonChen sc(0.0124, a, 9.0, m, 39.4, kCutoff, 0.5, knee, flattening);
+  ASSERT_LT(kCutoff * kCutoff, 6.0 * a * a);  // the shells above cover the cutoff
+  EXPECT_NEAR(sc.crystal_density(), rho_c, 1e-12 * rho_c);
+  const double r = 3.0;
+  const double rho = std::pow(a / r, m);
+  ASSERT_LT(rho, knee * rho_c);
+  const double below = knee - rho / rho_c;
+  const double embedded = std::sqrt(rho) + flattening * std::sqrt(rho_c) * below * below * below;
+  EXPECT_NEAR(dimer(sc, r).first, 0.0124 * (std::pow(a / r, 9.0) - 39.4 * 2.0 * embedded), 1e-12);
+  // No flattening is the plain form, to the bit.
+  SuttonChen plain(0.0124, a, 9.0, m, 39.4, kCutoff);
+  SuttonChen unflattened(0.0124, a, 9.0, m, 39.4, kCutoff, 0.5, knee, 0.0);
+  EXPECT_EQ(dimer(plain, r).first, dimer(unflattened, r).first);
+  EXPECT_EQ(dimer(plain, r).second, dimer(unflattened, r).second);
+  EXPECT_THROW(SuttonChen(0.0124, a, 9.0, m, 39.4, kCutoff, 0.5, 0.0, 0.1), pbms::Error);
+  EXPECT_THROW(SuttonChen(0.0124, a, 9.0, m, 39.4, kCutoff, 0.5, 1.0, -0.1), pbms::Error);
 }
 
 // A concurrent run's MPM points pair with the DPD particles but are no list
