@@ -89,7 +89,7 @@ protocol::RunStage DpdJudge::request(const std::string& kind, YAML::Node params,
   rs.params_yaml = yaml_text(ctx_.driver_params(kind, params));
   rs.materials_yaml = yaml_text(materials);
   rs.run_dir = ctx_.run_dir().string();
-  rs.seed = ctx_.seed();
+  rs.seed = settings_.judge.seed.value_or(ctx_.seed());
   return rs;
 }
 

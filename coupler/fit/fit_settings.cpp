@@ -116,7 +116,13 @@ Param optimizer_param() {
 }
 
 Param judge_param() {
-  return defaulted(Param::map("judge", config::CrystalSampling::params(2000),
+  std::vector<Param> keys = config::CrystalSampling::params(2000);
+  keys.push_back(Param::integer("seed",
+                                "Seed of the judge's DPD runs; the run's seed when left out. "
+                                "Targets computed by the DPD engine at the run's seed share its "
+                                "noise with the judge there; another seed judges independently")
+                     .at_least(0));
+  return defaulted(Param::map("judge", std::move(keys),
                               "How dpd_driver samples a candidate's crystal (the keys of "
                               "dpd_isotherm and dpd_elastic, whose requests judge it)"));
 }
@@ -493,6 +499,7 @@ FitSettings FitSettings::from_yaml(const YAML::Node& stage, const YAML::Node& ma
   f.optimizer.static_prefit = o["static_prefit"].as<bool>();
   f.optimizer.log_scale = o["scale"].as<std::string>() == "log";
   f.judge.sampling = config::CrystalSampling::from_yaml(stage["judge"]);
+  if (const YAML::Node seed = stage["judge"]["seed"]) f.judge.seed = seed.as<std::uint64_t>();
   f.group_ranks = stage["group_ranks"].as<int>();
   return f;
 }

@@ -3,6 +3,7 @@
 // express, and the typed settings read once from the resolved YAML.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +62,10 @@ struct OptimizerSettings {
 struct JudgeSettings {
   double temperature = 298.0;
   config::CrystalSampling sampling;
+  // The judge's runs' seed; the run's when unset. Targets that the DPD
+  // engine computed at the run's seed share its noise with the judge at
+  // that seed, so another seed is how a test sees the parameters' spread.
+  std::optional<std::uint64_t> seed;
 };
 
 struct FitSettings {

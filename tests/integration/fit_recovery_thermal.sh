@@ -6,7 +6,10 @@ source "$(dirname "$0")/lib.sh"
 # parameter must end within max(1 %, 3 sigma) of the truth, sigma being the
 # std_error the fit reports from the judge's block errors (issue 18), and the
 # objective must fall to a millionth of the start's. The short version in the
-# default suite is fit_recovery (the same fits on the static crystal).
+# default suite is fit_recovery (the same fits on the static crystal). The
+# targets and the judge share the run's seed here, so the fits end far
+# inside sigma; fit_judge_seed_spread checks sigma against the spread of fits
+# judged at other seeds.
 cfg="$ROOT/tests/integration/configs"
 for form in morse sutton_chen; do
   "$PBMS" run "$cfg/fit_recovery_thermal_$form.yaml" > "$form.txt" 2>&1 ||

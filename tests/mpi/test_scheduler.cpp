@@ -162,7 +162,7 @@ TEST(Scheduler, JudgeSplitsTheElasticConstantsOverGroups) {
 
   pbms::coupler::fit::FitSettings settings;
   settings.material = "cu_cg";
-  settings.judge = {298.0, 0, 50, 100, 1.0e4, 0.01};
+  settings.judge = {298.0, {0, 50, 100, 1.0e4, 0.01}, std::nullopt};
   settings.isotherm = pbms::coupler::fit::IsothermTarget{{1.0e4, 0.0}, {1.0, 1.0}, {false, false}};
   settings.elastic = pbms::coupler::fit::ElasticTarget{1.0, 1.0, 1.0};
   pbms::config::StageConfig fit{"judge", "fit_dpd_potential", "coupler", {kDpd}, {}, 0};
