@@ -1,7 +1,5 @@
 #include "kernels/fcc_crystal.hpp"
 
-#include <array>
-
 #include "pbms/error.hpp"
 
 namespace pbms::dpd {
@@ -12,8 +10,6 @@ FccCrystal fcc_crystal(int cells_x, int cells_y, int cells_z, double lattice_con
     throw Error("fcc crystal: cell counts must be positive");
   }
   if (!(lattice_constant > 0.0)) throw Error("fcc crystal: lattice constant must be > 0 Å");
-  constexpr std::array<Vec3, 4> kBasis{
-      {{0.0, 0.0, 0.0}, {0.5, 0.5, 0.0}, {0.5, 0.0, 0.5}, {0.0, 0.5, 0.5}}};
   FccCrystal crystal;
   crystal.box.hi = {cells_x * lattice_constant, cells_y * lattice_constant,
                     cells_z * lattice_constant};
@@ -22,7 +18,7 @@ FccCrystal fcc_crystal(int cells_x, int cells_y, int cells_z, double lattice_con
   for (int k = 0; k < cells_z; ++k) {
     for (int j = 0; j < cells_y; ++j) {
       for (int i = 0; i < cells_x; ++i) {
-        for (const Vec3& b : kBasis) {
+        for (const Vec3& b : kFccBasis) {
           crystal.particles.add(id++, 0,
                                 {(i + b[0]) * lattice_constant, (j + b[1]) * lattice_constant,
                                  (k + b[2]) * lattice_constant});

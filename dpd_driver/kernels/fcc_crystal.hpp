@@ -2,10 +2,16 @@
 // periodic orthogonal box: the reference state of the mesoparticle copper.
 #pragma once
 
+#include <array>
+
 #include "kernels/dpd_particles.hpp"
 #include "kernels/orthogonal_box.hpp"
 
 namespace pbms::dpd {
+
+// The four sites of the conventional cubic cell, in lattice constants.
+inline constexpr std::array<Vec3, 4> kFccBasis{
+    {{0.0, 0.0, 0.0}, {0.5, 0.5, 0.0}, {0.5, 0.0, 0.5}, {0.0, 0.5, 0.5}}};
 
 struct FccCrystal {
   DpdParticles particles;

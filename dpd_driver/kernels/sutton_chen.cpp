@@ -1,5 +1,6 @@
 #include "kernels/sutton_chen.hpp"
 
+#include "kernels/fcc_crystal.hpp"
 #include "kernels/pair_force_loop.hpp"
 #include "kernels/pair_parameter_reader.hpp"
 #include "pbms/error.hpp"
@@ -55,12 +56,11 @@ namespace {
 // within the cutoff, seen from one site.
 double fcc_site_density(double a, double m, double cutoff) {
   const int reach = static_cast<int>(std::ceil(cutoff / a)) + 1;
-  constexpr double kBasis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   double rho = 0.0;
   for (int i = -reach; i <= reach; ++i) {
     for (int j = -reach; j <= reach; ++j) {
       for (int k = -reach; k <= reach; ++k) {
-        for (const auto& b : kBasis) {
+        for (const Vec3& b : kFccBasis) {
           const double dx = i + b[0], dy = j + b[1], dz = k + b[2];
           const double s2 = dx * dx + dy * dy + dz * dz;  // (r/a)^2
           if (s2 > 0.0 && s2 * a * a < cutoff * cutoff) rho += std::pow(s2, -0.5 * m);
