@@ -334,6 +334,15 @@ void check_ghost_forces(const config::StageCheck& c) {
   }
 }
 
+// The ramp raises the gas's pressure through its heat bath.
+void check_gas_ramp(const config::StageCheck& c) {
+  const YAML::Node g = c.resolved["gas"];
+  if (!g || !(g["ramp_time"].as<double>() > 0.0) || g["heat_bath_time"].as<double>() > 0.0) return;
+  c.validator.error(c.raw["gas"]["ramp_time"], c.path + ".gas.ramp_time",
+                    "the ramp raises the gas's pressure through its heat bath: give "
+                    "gas.heat_bath_time > 0, or leave ramp_time out");
+}
+
 void check_concurrent_stage(const config::StageCheck& c) {
   check_regions(c);
   check_grid(c);
@@ -344,6 +353,7 @@ void check_concurrent_stage(const config::StageCheck& c) {
   check_opening_off_grips(c);
   check_fit_window(c);
   check_ghost_forces(c);
+  check_gas_ramp(c);
 }
 
 }  // namespace pbms::coupling

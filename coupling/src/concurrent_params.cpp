@@ -35,6 +35,7 @@ GasParams gas_from_yaml(const YAML::Node& g, const YAML::Node& box) {
   gas.density_from_grid = g["density_from"].as<std::string>() == "grid";
   gas.heat_bath_time = g["heat_bath_time"].as<double>();
   gas.density_time = g["density_time"].as<double>();
+  gas.ramp_time = g["ramp_time"].as<double>();
   gas.clearance = g["clearance"].as<double>(0.75 * gas.spacing);
   gas.probe_distance = g["probe_distance"].as<double>();
   gas.settle_time = g["settle_time"].as<double>();

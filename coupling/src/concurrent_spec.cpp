@@ -180,6 +180,15 @@ Param gas() {
                    "motion; 0 leaves it adiabatic")
            .def(1.0)
            .at_least(0),
+       Param::real("ramp_time", Dimension::kTime,
+                   "The gas's pressure rises from zero to `pressure` over this time: its "
+                   "specific internal energy starts at zero and the heat bath's target rises "
+                   "linearly to the target's. A body set at once into a gas of several GPa is "
+                   "struck by it (at 5 GPa the cube of configs/inclusion_in_gas.yaml reached "
+                   "590 K within 0.3 ps); 0 sets the full pressure at the start. Needs "
+                   "heat_bath_time > 0")
+           .def(0.0)
+           .at_least(0),
        Param::boolean("walls",
                       "The box's non-periodic faces are walls: the grid nodes on "
                       "them keep no normal velocity")
@@ -188,7 +197,8 @@ Param gas() {
       "advanced by mpm_driver");
 }
 
-// How big a body is: its edges from its outermost lattice planes.
+// How big a body is: its edges from its outermost lattice planes, along
+// its own axes as it turns.
 Param volume() {
   return Param::map(
       "volume",
@@ -200,9 +210,11 @@ Param volume() {
                    "at the start")
            .above(0)
            .referable()},
-      "A block's volume as the product of its three edges, each the distance between the mean "
-      "positions of its two outermost lattice planes along that axis plus one plane spacing "
-      "(a/2); the planes' particles are chosen at the start");
+      "A block's volume as the product of its three edges along its own axes: each particle's "
+      "lattice site is fitted at the start, each sample finds the block's turn (the rotation "
+      "that best carries the sites onto the particles), and an edge is the distance between "
+      "the mean positions of the two outermost whole lattice planes along that turned axis, "
+      "times (n + 1)/n for n plane spacings between them");
 }
 
 }  // namespace
@@ -373,7 +385,8 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       {"body_volume", OutputSpec::Shape::kScalar, "Å^3",
        "The volume.group's block volume, mean over the last half of the samples (volume)"},
       {"body_edges", OutputSpec::Shape::kTable, "",
-       "Each sample: the block's three edges and its volume (volume)"},
+       "Each sample: the block's three edges along its own axes, its volume and its turn "
+       "from the box's axes in degrees (volume)"},
       {"volume_ratio", OutputSpec::Shape::kScalar, "1",
        "body_volume over volume.reference, or over the volume at the start (volume)"},
       {"dpd_temperature", OutputSpec::Shape::kScalar, "K", "Kinetic temperature of the DPD part"},

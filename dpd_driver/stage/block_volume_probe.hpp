@@ -1,9 +1,9 @@
 // The volume of a block of DPD particles (the inclusion's cube, seed §6.2.1:
-// V is the product of its three edges). Along each axis the edge is the
-// distance between the mean positions of the block's two outermost lattice
-// planes, chosen at the start, scaled by (d0 + a/2) / d0 so that it spans
-// half a plane spacing beyond each plane as the crystal does. The planes'
-// means take out the thermal motion that single outermost particles have.
+// V is the product of its three edges), measured along the block's own
+// axes as it turns (analysis/crystal_block): each particle's lattice site is
+// fitted once, at the start, on every rank from the gathered block, and each
+// sample takes one reduction of 33 sums. The planes' means take out the
+// thermal motion that single outermost particles have.
 #pragma once
 
 #include <mpi.h>
@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "pbms/analysis/crystal_block.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/coupling/concurrent_probes.hpp"
 #include "pbms/io/checkpoint_archive.hpp"
@@ -36,15 +37,13 @@ class BlockVolumeProbe {
   void load(const CheckpointArchive& a);
 
  private:
-  // The six planes' mean coordinates along their axes: lo x, hi x, lo y, ...
-  [[nodiscard]] std::array<double, 6> plane_means(const coupling::ParticleView& now) const;
+  [[nodiscard]] analysis::BlockEdges measure(const coupling::ParticleView& now) const;
 
   MPI_Comm comm_;
   coupling::VolumeProbe probe_;
-  double half_plane_ = 0.0;
-  std::array<std::vector<std::int64_t>, 6> planes_;  // sorted ids
-  std::array<double, 3> start_{};                    // d0 per axis
-  std::vector<double> time_, volume_;
+  std::vector<std::int64_t> ids_;  // the block's, sorted; sites_ in the same order
+  analysis::BlockSites sites_;
+  std::vector<double> time_, volume_, rotation_;
   std::array<std::vector<double>, 3> edges_;
 };
 

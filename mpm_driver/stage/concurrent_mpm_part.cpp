@@ -295,7 +295,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
     set_current_step(n);
     part.ramp_grips(n);
     scheme.step_naming(cp.part(coupling::Solver::kMpm));
-    part.hold_gas_temperature();
+    part.hold_gas_temperature(n);
     probes.track(n, view_of(engine.points()));
     const double t = static_cast<double>(n) * cp.time_step;
     if (gas) gas->after_step(engine);

@@ -1,5 +1,6 @@
 #include "mpm_part_of_body.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -82,7 +83,9 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
     if (p.is_gas()) {
       volume = cp.gas->point_volume();
       material = gas_;
-      s = gas_model_->initial_state(p.mass / volume, cp.gas->pressure);
+      // A ramped gas starts cold, at zero pressure (hold_gas_temperature).
+      s = gas_model_->initial_state(p.mass / volume,
+                                    cp.gas->ramp_time > 0.0 ? 0.0 : cp.gas->pressure);
       if (p.kind == static_cast<std::uint32_t>(coupling::HandedKind::kGasAway)) {
         groups |= m.group_mask(kGasAwayGroup);
       }
@@ -132,19 +135,26 @@ MpmPartOfBody::MpmPartOfBody(MPI_Comm comm, const coupling::ConcurrentParams& cp
     materials.density.push_back(cp.gas->density);
     gas_energy_ = gas_model_->initial_state(cp.gas->density, cp.gas->pressure).internal_energy;
     if (cp.gas->heat_bath_time > 0.0) gas_relaxation_ = cp.time_step / cp.gas->heat_bath_time;
+    gas_ramp_steps_ = cp.gas->ramp_time / cp.time_step;
   }
   engine_ = std::make_unique<MpmEngine>(comm, model_of(cp, body), std::move(materials));
   side_ = std::make_unique<ConcurrentMpmSide>(*engine_, cp.time_step, body.skin, gas_);
   time_step_ = cp.time_step;
 }
 
-void MpmPartOfBody::hold_gas_temperature() {
+void MpmPartOfBody::hold_gas_temperature(std::int64_t step) {
   if (!(gas_relaxation_ > 0.0)) return;
+  // The ramp's target is a function of the step alone, so that a resumed
+  // run goes on where it stopped.
+  const double target =
+      gas_ramp_steps_ > 0.0
+          ? gas_energy_ * std::min(1.0, static_cast<double>(step) / gas_ramp_steps_)
+          : gas_energy_;
   grid::MaterialPoints& p = engine_->points();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.material[i] != gas_) continue;
     grid::MaterialPointState& s = p.state[i];
-    s.internal_energy += gas_relaxation_ * (gas_energy_ - s.internal_energy);
+    s.internal_energy += gas_relaxation_ * (target - s.internal_energy);
     s.stress =
         grid::SymmetricTensor::isotropic(-gas_model_->pressure(s.density, s.internal_energy));
   }

@@ -39,10 +39,11 @@ class MpmPartOfBody {
   // Before step `step`: the held groups on a velocity ramp take that
   // step's velocity.
   void ramp_grips(std::int64_t step);
-  // After a step: the gas's specific internal energy moves dt / tau of the
-  // way back to its starting value (gas.heat_bath_time), and its pressure
-  // with it.
-  void hold_gas_temperature();
+  // After step `step`: the gas's specific internal energy moves dt / tau of
+  // the way to its target (gas.heat_bath_time), and its pressure with it.
+  // The target is the starting value, or with gas.ramp_time that value times
+  // the fraction of the ramp done.
+  void hold_gas_temperature(std::int64_t step);
 
   // The gas's material index, -1 without gas; the group of the gas points
   // away from the body (gas.probe_distance), where its pressure is measured.
@@ -64,6 +65,7 @@ class MpmPartOfBody {
   const IdealGas* gas_model_ = nullptr;
   double gas_energy_ = 0.0;      // the gas's starting specific internal energy
   double gas_relaxation_ = 0.0;  // dt / tau, 0 without a heat bath
+  double gas_ramp_steps_ = 0.0;  // steps over which the bath's target rises; 0: none
   grid::NodeBox band_;
   double reach_ = 0.0, lattice_constant_ = 0.0, time_step_ = 0.0;
   std::unique_ptr<MpmEngine> engine_;

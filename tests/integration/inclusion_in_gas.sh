@@ -7,20 +7,21 @@ source "$(dirname "$0")/lib.sh"
 #  - the gas pressure reached away from the cube, within 5 % of the target
 #    over 10-20 ps (the issue's tolerance);
 #  - the cube's V/V0 at 1 GPa within 1 % of the bulk isotherm of the same
-#    DPD potential (dpd_isotherm, a periodic crystal with no gas and no grid);
-#    seeds 2026-2028 of the whole config: -0.19, -0.09, +0.45 points.
-#    At 3 and 5 GPa it is printed, not asserted: there the cube does not stay
-#    a crystal (seeds 2027 and 2028 ended at V/V0 0.996-1.068, its inner
-#    planes moving apart as it heats to 305-353 K; docs/chapter6.md);
+#    DPD potential (dpd_isotherm, a periodic crystal with no gas and no grid),
+#    its edges measured along the cube's own axes as it turns; seeds
+#    2026-2028 of the whole config: -0.24 % each;
 #  - the body's mass constant and its momentum, walls' impulse counted,
 #    conserved to round-off (1e-12 of M c; measured ~1e-16);
 #  - the DPD part at 298 K within 3 % up to 1 GPa (at 5 GPa the gas heats
-#    the copper past what the thermostat takes out: 301-353 K so far,
-#    printed, not asserted; docs/chapter6.md);
+#    the copper's surface plane past what the thermostat takes out: 328-377 K
+#    at 20 ps, printed, not asserted; docs/chapter6.md);
 #  - fig. 6.4's plot written.
-# With the argument `all` (the validation test) the whole config runs, EAM copper's MD
-# isotherm included, and V/V0 also holds within 1.5 % of MD's at 1, 3 and
-# 5 GPa.
+# With the argument `all` (the validation test) the whole config runs, EAM
+# copper's MD isotherm included: V/V0 also holds within 1 % of the bulk DPD
+# isotherm at 3 GPa and within 1.5 % of MD's at 1, 3 and 5 GPa (seeds
+# 2026-2028: -0.65 to -0.74 % and -0.22 to -1.18 %). At 5 GPa the cube is
+# 0.92-1.26 % below the bulk DPD isotherm, outside the issue's 1 %: printed,
+# not asserted (docs/chapter6.md).
 CONFIG="$ROOT/configs/inclusion_in_gas.yaml"
 ALL=0
 [ "${1:-}" = all ] && ALL=1
@@ -83,15 +84,15 @@ with h5py.File(f"{run}/results.h5", "r") as f:
             bad.append(f"{s}: the mass changed by {np.ptp(mass):.3g} g/mol")
         if target >= 0.5:
             dpd = bulk("dpd_isotherm", target)
-            print(f"  bulk DPD {dpd:.5f} ({100 * (ratio - dpd):+.2f} points)")
-        if 0.5 <= target < 2.0:
-            if abs(ratio - dpd) > 0.01:
+            print(f"  bulk DPD {dpd:.5f} ({100 * (ratio / dpd - 1.0):+.2f} %)")
+        if 0.5 <= target < 4.0 and (target < 2.0 or everything):
+            if abs(ratio / dpd - 1.0) > 0.01:
                 bad.append(f"{s}: V/V0 {ratio:.5f} more than 1 % off the bulk DPD {dpd:.5f}")
-            if everything:
-                md = bulk("md_isotherm", target)
-                print(f"  bulk MD {md:.5f} ({100 * (ratio - md):+.2f} points)")
-                if abs(ratio - md) > 0.015:
-                    bad.append(f"{s}: V/V0 {ratio:.5f} more than 1.5 % off MD's {md:.5f}")
+        if target >= 0.5 and everything:
+            md = bulk("md_isotherm", target)
+            print(f"  bulk MD {md:.5f} ({100 * (ratio / md - 1.0):+.2f} %)")
+            if abs(ratio / md - 1.0) > 0.015:
+                bad.append(f"{s}: V/V0 {ratio:.5f} more than 1.5 % off MD's {md:.5f}")
 import os
 if not os.path.isfile(f"{run}/volume_in_gas.png"):
     bad.append("volume_in_gas.png (fig. 6.4) was not written")

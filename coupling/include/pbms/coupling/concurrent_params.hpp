@@ -67,6 +67,7 @@ struct GasParams {
   bool density_from_grid = true;  // else integrated along each point's path
   double density_time = 2.0;      // ps: the points' density relaxes to the grid's over it
   double heat_bath_time = 1.0;    // ps: e relaxes to its start over it; 0: adiabatic
+  double ramp_time = 0.0;         // ps: the heat bath's target rises from 0 over it
   double clearance = 0.0;         // sites nearer a body particle stay empty
   double probe_distance = 0.0;    // the pressure is measured this far from the body
   double settle_time = 0.0;       // ps: gas_pressure averages the samples from here on
