@@ -508,17 +508,18 @@ def plot_inclusion(stages, outdir):
 
 
 def plot_necks(stages, outdir):
-    """The seed's fig. 6.7: the neck `pair` of every concurrent and md_bodies
-    stage against time on one axis (DPD with and without gas, and MD)."""
-    curves = [st for st in stages if st.kind in ("concurrent", "md_bodies")
-              and "neck_pair" in st.tables]
+    """The seed's fig. 6.7: the neck `pair` of every stage that has one
+    against time on one axis (DPD on the grid with and without gas, DPD
+    alone, and MD)."""
+    curves = [st for st in stages if "neck_pair" in st.tables]
     if not curves:
         return []
     fig, ax = plt.subplots(figsize=(6.8, 4.4))
     for st in curves:
         t = st.tables["neck_pair"]
         gas = st.scalar("gas_pressure_target")
-        what = "MD" if st.kind == "md_bodies" else "no gas" if gas is None else f"gas {gas:g} GPa"
+        what = ("MD" if st.kind == "md_bodies" else "DPD alone" if st.kind != "concurrent"
+                else "no gas" if gas is None else f"gas {gas:g} GPa")
         stable = st.scalar("neck_width_pair")
         ax.plot(t["time"], t["width"], lw=1.0, color="black" if st.kind == "md_bodies" else None,
                 label=f"{st.name} ({what}): stable {stable:.1f} Å" if stable is not None

@@ -157,11 +157,7 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
                              axis_index(t["axis"].as<std::string>()), t["fit_strain"].as<double>()};
   }
   if (const YAML::Node g = p["gas"]) c.gas = gas_from_yaml(g, p["box"]);
-  for (const auto& n : p["necks"]) {
-    c.necks.push_back(
-        {n["name"].as<std::string>(), n["first"].as<std::string>(), n["second"].as<std::string>(),
-         n["second_rod_axis"] ? axis_index(n["second_rod_axis"].as<std::string>()) : -1});
-  }
+  c.necks = necks_from_yaml(p["necks"]);
   c.neck_stable_time = p["neck_stable_time"].as<double>();
   for (const auto& r : p["rods"]) {
     c.rods.push_back({r["name"].as<std::string>(), r["group"].as<std::string>(),

@@ -1,5 +1,7 @@
 #include "pbms/coupling/concurrent_spec.hpp"
 
+#include "pbms/coupling/neck_spec.hpp"
+
 #include "pbms/geometry/region_yaml.hpp"
 
 namespace pbms::coupling {
@@ -291,33 +293,8 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       "(and into a gas sharing its nodes) far faster than the pair thermostat (gamma) gives "
       "it back; this holds the body at its temperature"));
   s.params.push_back(volume());
-  s.params.push_back(
-      Param::list_of(
-          "necks",
-          Param::map("neck",
-                     {Param::identifier("name", "Key suffix: neck_<name>, neck_width_<name>, ...")
-                          .require(),
-                      Param::identifier("first", "One body (a group)")
-                          .require()
-                          .names_entry_of({"bodies", "groups"}),
-                      Param::identifier("second", "The other body")
-                          .require()
-                          .names_entry_of({"bodies", "groups"}),
-                      Param::choice("second_rod_axis", {"x", "y", "z"},
-                                    "The second body is a rod along this axis: the line runs "
-                                    "from the first body's centre square onto the rod's axis")},
-                     "A neck between two bodies"),
-          "Necks between sintering bodies (seed §6.4): the smallest diameter of their "
-          "cross-section perpendicular to the line through their centres of mass, in slabs "
-          "a plane spacing (a/2) thick over the middle half of that line, each slab's "
-          "diameter that of the circle of its particles' area (a³/4 each over the slab's "
-          "thickness), counting the particles within half the centre distance of the line; "
-          "0 before they touch")
-          .def(std::vector<std::string>{}));
-  s.params.push_back(Param::real("neck_stable_time", Dimension::kTime,
-                                 "neck_width_<name> is the mean over the run's last this much")
-                         .def(20.0)
-                         .above(0));
+  s.params.push_back(necks_param());
+  s.params.push_back(neck_stable_time_param());
   s.params.push_back(
       Param::list_of(
           "rods",
@@ -368,15 +345,6 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
        "Each sample: the gas pressure away from the body and over every gas point (gas)"},
       {"wall_impulse", OutputSpec::Shape::kScalar, "g/mol*Å/ps",
        "Magnitude of the momentum the walls took from the gas over the run (gas)"},
-      {"neck_<name>", OutputSpec::Shape::kTable, "",
-       "Each sample: the neck's width, the distance between the two bodies' centres and the "
-       "closest approach of their particles (capped at 2 a)"},
-      {"neck_width_<name>", OutputSpec::Shape::kScalar, "Å",
-       "The stable neck: the mean width over the last neck_stable_time"},
-      {"neck_final_<name>", OutputSpec::Shape::kScalar, "Å", "The neck's width at the end"},
-      {"contact_time_<name>", OutputSpec::Shape::kScalar, "ps",
-       "First sample where a particle of each body is within 1.1 nearest-neighbour distances "
-       "(1.1 a/√2) of the other (absent if never)"},
       {"rod_<name>", OutputSpec::Shape::kTable, "", "Each sample: the rod's bend"},
       {"rod_deflection_<name>", OutputSpec::Shape::kScalar, "Å",
        "The rod's largest bend over the run (its largest lateral deflection)"},
@@ -432,6 +400,7 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       {"mpm_exchange_messages_per_step", OutputSpec::Shape::kScalar, "1", "The same, MPM part"},
       {"mpm_exchange_waiting_fraction", OutputSpec::Shape::kScalar, "1", "The same, MPM part"},
   };
+  for (auto& o : neck_outputs()) s.outputs.push_back(std::move(o));
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include "block_volume_probe.hpp"
 #include "dpd_model.hpp"
 #include "dpd_part_of_body.hpp"
+#include "dpd_particle_view.hpp"
 #include "dpd_run.hpp"
 #include "dpd_stage_params.hpp"
 #include "engine/dpd_engine.hpp"
@@ -39,23 +40,6 @@
 
 namespace pbms::dpd {
 namespace {
-
-// The DPD part's owned particles, at unwrapped positions.
-struct DpdView {
-  std::vector<Vec3> x;
-  std::vector<double> mass;
-  coupling::ParticleView view(const DpdEngine& e) {
-    const DpdParticles& p = e.particles();
-    const OrthogonalBox& box = e.domain().box();
-    x.resize(e.owned());
-    mass.resize(e.owned());
-    for (std::size_t i = 0; i < e.owned(); ++i) {
-      for (int a = 0; a < 3; ++a) x[i][a] = p.x[i][a] + p.image[i][a] * box.length(a);
-      mass[i] = p.mass(i);
-    }
-    return {e.owned(), p.id, x, p.v, mass, p.group_mask};
-  }
-};
 
 // Grip stress against strain, both grips held at their velocities.
 struct TensionSeries {

@@ -1,5 +1,5 @@
-// dpd_elastic, dpd_isotherm, dpd_uniaxial_strain and dpd_surface_energy: properties of the periodic bulk DPD crystal
-// of a dpd_mesoparticle material, computed in process by the calculators of
+// dpd_elastic, dpd_isotherm, dpd_uniaxial_strain and dpd_surface_energy: properties of the periodic
+// bulk DPD crystal of a dpd_mesoparticle material, computed in process by the calculators of
 // properties/ (the same calls the MD->DPD fit makes). The crystal is small
 // (hundreds of particles), so rank 0 computes and the other ranks wait.
 #pragma once

@@ -10,6 +10,7 @@
 
 #include "dpd_impact_analysis.hpp"
 #include "dpd_model.hpp"
+#include "dpd_particle_view.hpp"
 #include "dpd_probes.hpp"
 #include "dpd_run_params.hpp"
 #include "dpd_tension_analysis.hpp"
@@ -17,6 +18,7 @@
 #include "engine/dpd_engine.hpp"
 #include "engine/dpd_grid_step.hpp"
 #include "engine_checkpoint.hpp"
+#include "neck_probe.hpp"
 #include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 
@@ -116,12 +118,19 @@ struct DpdRun {
   DpdTrajectory& trajectory;
   DpdImpactAnalysis* impact;
   DpdTensionAnalysis* tension;
+  std::vector<NeckProbe>& necks;
 
   [[nodiscard]] double dt() const { return engine.settings().dt; }
 
   ThermoState sample(std::int64_t step) {
     const ThermoState thermo = probes.sample(engine, step, dt(), tension != nullptr);
-    if (tension) tension->sample(engine, thermo, static_cast<double>(step) * dt());
+    const double t = static_cast<double>(step) * dt();
+    if (tension) tension->sample(engine, thermo, t);
+    if (!necks.empty()) {
+      DpdView view;
+      const auto now = view.view(engine);
+      for (auto& neck : necks) neck.sample(t, now);
+    }
     return thermo;
   }
   // Grips on a velocity ramp take each step's speed before it.
@@ -144,6 +153,7 @@ struct DpdRun {
     probes.save(a);
     if (impact) impact->save(a);
     if (tension) tension->save(a);
+    for (const auto& neck : necks) neck.save(a);
     return a;
   }
   // The state `save` wrote; returns the step it was written after and sets
@@ -157,6 +167,7 @@ struct DpdRun {
     probes.load(a);
     if (impact) impact->load(a);
     if (tension) tension->load(a);
+    for (auto& neck : necks) neck.load(a);
     return step;
   }
   void step(std::int64_t n) {
@@ -216,6 +227,11 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   }
   DpdTrajectory trajectory(ctx.comm(), ctx.stage_dir() / "particles.h5md", p.write_forces,
                            p.write_internal_energy);
+  std::vector<NeckProbe> necks;
+  for (const auto& n : rp.necks) {
+    necks.emplace_back(ctx.comm(), n, model.group_mask(n.first), model.group_mask(n.second),
+                       material.lattice_constant);
+  }
   DpdRun run{rp,
              engine,
              grid_step.get(),
@@ -223,7 +239,8 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
              probes,
              trajectory,
              impact ? &*impact : nullptr,
-             tension ? &*tension : nullptr};
+             tension ? &*tension : nullptr,
+             necks};
 
   StageCheckpoints checkpoints(ctx);
   ThermoState initial;
@@ -261,6 +278,7 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   report_run(r, engine, probes, initial, last, p.steps, seconds, p.steps - first_step + 1);
   if (impact) impact->report(r);
   if (tension && rp.mode == Mode::kTension) tension->report(r, ctx.stage());
+  for (const auto& neck : necks) neck.report(r, rp.neck_stable_time);
   checkpoints.report(r);
   r.attributes["decomposition"] = fmt::format("{}x{}x{}", engine.domain().dims()[0],
                                               engine.domain().dims()[1], engine.domain().dims()[2]);

@@ -33,6 +33,8 @@ DpdRunParams DpdRunParams::from_yaml(const YAML::Node& p) {
   r.stage = DpdStageParams::from_yaml(p);
   if (r.mode == Mode::kImpact && p["impact"]) r.impact = ImpactParams::from_yaml(p["impact"]);
   if (r.mode == Mode::kTension && p["tension"]) r.tension = TensionParams::from_yaml(p["tension"]);
+  r.necks = coupling::necks_from_yaml(p["necks"]);
+  r.neck_stable_time = p["neck_stable_time"].as<double>();
   return r;
 }
 
@@ -42,6 +44,8 @@ DpdRunParams DpdRunParams::equilibrate_from_yaml(const YAML::Node& p) {
   r.stage = DpdStageParams::from_yaml(p);
   r.target_temperature = p["target_temperature"].as<double>();
   r.tau = p["tau"].as<double>();
+  r.necks = coupling::necks_from_yaml(p["necks"]);
+  r.neck_stable_time = p["neck_stable_time"].as<double>();
   return r;
 }
 

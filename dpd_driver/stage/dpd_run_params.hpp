@@ -7,11 +7,13 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
 #include "dpd_stage_params.hpp"
 #include "pbms/analysis/tension_test.hpp"
+#include "pbms/coupling/neck_spec.hpp"
 
 namespace pbms::dpd {
 
@@ -46,6 +48,8 @@ struct DpdRunParams {
   std::optional<TensionParams> tension;
   double target_temperature = 0.0;  // dpd_equilibrate's Berendsen thermostat
   double tau = 0.0;                 // ps
+  std::vector<coupling::NeckPair> necks;
+  double neck_stable_time = 20.0;  // ps
 
   // dpd_run's map, with its mode.
   static DpdRunParams from_yaml(const YAML::Node& params);

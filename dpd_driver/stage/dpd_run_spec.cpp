@@ -1,6 +1,7 @@
 #include "dpd_run.hpp"
 #include "dpd_stage_params.hpp"
 #include "pbms/analysis/tension_test.hpp"
+#include "pbms/coupling/neck_spec.hpp"
 
 namespace pbms::dpd {
 
@@ -11,7 +12,7 @@ using units::Dimension;
 namespace {
 
 std::vector<OutputSpec> common_outputs() {
-  return {
+  std::vector<OutputSpec> out{
       {"steps", OutputSpec::Shape::kScalar, "1", "Time steps taken"},
       {"particles", OutputSpec::Shape::kScalar, "1", "Mesoparticles"},
       {"temperature", OutputSpec::Shape::kScalar, "K", "Kinetic temperature at the end"},
@@ -25,6 +26,8 @@ std::vector<OutputSpec> common_outputs() {
       {"steps_per_second", OutputSpec::Shape::kScalar, "1/s", "Speed of the run"},
       {"probes", OutputSpec::Shape::kTable, "", "Probe samples"},
   };
+  for (auto& o : coupling::neck_outputs()) out.push_back(std::move(o));
+  return out;
 }
 
 }  // namespace
@@ -96,6 +99,8 @@ config::StageKindSpec DpdRunStage::spec() {
                  "mode: tension. Stress is the specimen's mean conservative virial stress, strain "
                  "its elongation over its length")
           .required_when("mode", "tension"));
+  s.params.push_back(coupling::necks_param());
+  s.params.push_back(coupling::neck_stable_time_param());
   s.outputs = common_outputs();
   s.outputs.push_back({"grip_youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
                        "Slope of the grips' stress (the rod's pull on them: the pair force on the "
@@ -144,6 +149,8 @@ config::StageKindSpec DpdEquilibrateStage::spec() {
           .at_least(0));
   s.params.push_back(
       Param::real("tau", Dimension::kTime, "Berendsen coupling time").def(0.1).above(0));
+  s.params.push_back(coupling::necks_param());
+  s.params.push_back(coupling::neck_stable_time_param());
   s.outputs = common_outputs();
   return s;
 }

@@ -15,6 +15,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "pbms/coupling/coupling_side.hpp"
+#include "pbms/coupling/neck_spec.hpp"
 #include "pbms/geometry/region.hpp"
 #include "pbms/grid/regular_grid.hpp"
 
@@ -81,13 +82,6 @@ struct GasParams {
 struct VolumeProbe {
   std::string group;
   std::optional<double> reference;  // Å³: V0, else the volume at the start
-};
-
-// A neck between two bodies (groups) that sinter (the `necks` probe).
-struct NeckPair {
-  std::string name;
-  std::string first, second;
-  int second_rod_axis = -1;  // 0..2: `second` is a rod along that axis
 };
 
 // A rod whose bend is followed (the `rods` probe).
