@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "pbms/analysis/quasi_static_pull.hpp"
+#include "pbms/config/axis_name.hpp"
 #include "pbms/config/validator.hpp"
 #include "pbms/coupling/concurrent_params.hpp"
 #include "pbms/geometry/region_yaml.hpp"
@@ -16,9 +17,7 @@
 namespace pbms::coupling {
 namespace {
 
-int axis_index(const std::string& a) {
-  return a == "x" ? 0 : a == "y" ? 1 : 2;
-}
+using config::axis_index;
 
 // Bounding boxes that share a volume without one holding the other: a
 // particle there could belong to both, and which solver moves it would

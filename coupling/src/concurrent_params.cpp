@@ -6,15 +6,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "pbms/config/axis_name.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::coupling {
 namespace {
 
-int axis_index(const std::string& a) {
-  return a == "x" ? 0 : a == "y" ? 1 : 2;
-}
+using config::axis_index;
 
 InterfaceTreatment treatment(const std::string& name) {
   if (name == "none") return InterfaceTreatment::kNone;

@@ -1,5 +1,7 @@
 #include "pbms/coupling/neck_spec.hpp"
 
+#include "pbms/config/axis_name.hpp"
+
 namespace pbms::coupling {
 
 using config::OutputSpec;
@@ -56,13 +58,10 @@ std::vector<OutputSpec> neck_outputs() {
 std::vector<NeckPair> necks_from_yaml(const YAML::Node& necks) {
   std::vector<NeckPair> out;
   for (const auto& n : necks) {
-    const std::string axis = n["second_rod_axis"] ? n["second_rod_axis"].as<std::string>() : "";
+    const YAML::Node axis = n["second_rod_axis"];
     out.push_back({n["name"].as<std::string>(), n["first"].as<std::string>(),
                    n["second"].as<std::string>(),
-                   axis.empty()  ? -1
-                   : axis == "x" ? 0
-                   : axis == "y" ? 1
-                                 : 2});
+                   axis ? config::axis_index(axis.as<std::string>()) : -1});
   }
   return out;
 }

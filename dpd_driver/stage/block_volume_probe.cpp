@@ -89,6 +89,11 @@ void BlockVolumeProbe::save(CheckpointArchive& a) const {
 void BlockVolumeProbe::load(const CheckpointArchive& a) {
   time_ = a.get("volume/time");
   volume_ = a.get("volume/volume");
+  if (!a.has("volume/rotation")) {
+    throw Error(
+        "volume: the checkpoint was written before block volumes were measured along the "
+        "block's own axes; run the stage again from its start");
+  }
   rotation_ = a.get("volume/rotation");
   for (std::size_t c = 0; c < 3; ++c) edges_[c] = a.get(fmt::format("volume/edge_{}", c));
 }

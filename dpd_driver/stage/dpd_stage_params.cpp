@@ -239,10 +239,6 @@ DpdProbeSpec probe_from_yaml(const YAML::Node& p) {
 
 }  // namespace
 
-int axis_index(const std::string& axis) {
-  return axis == "x" ? 0 : axis == "y" ? 1 : 2;
-}
-
 config::MaterialKindSpec MesoparticleMaterial::spec() {
   return {
       "dpd_mesoparticle",

@@ -15,6 +15,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "kernels/orthogonal_box.hpp"
+#include "pbms/config/axis_name.hpp"
 #include "pbms/config/param.hpp"
 #include "pbms/config/stage_kind_spec.hpp"
 #include "pbms/geometry/region.hpp"
@@ -100,6 +101,6 @@ struct DpdStageParams {
 };
 
 // "x", "y", "z" as 0, 1, 2.
-[[nodiscard]] int axis_index(const std::string& axis);
+using config::axis_index;
 
 }  // namespace pbms::dpd

@@ -39,7 +39,8 @@ struct BlockSites {
 // Fits the block's lattice to `x` (one block, every particle): the frame
 // that carries a lattice of `plane_spacing` best onto the particles, and
 // each particle's site in it. The fit grows from the centre outwards, so a
-// block turned by up to about 20° from the box's axes is found. A face
+// block turned from the box's axes is found (tested to 15°; the cubes in a
+// gas leave their equilibration turned by 0.7–2°). A face
 // plane is the outermost plane holding at least half the block's median
 // plane count, so that adatoms on a face do not stand for it. Throws
 // pbms::Error for fewer than 8 particles or no whole plane along an axis.

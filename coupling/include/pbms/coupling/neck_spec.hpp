@@ -2,7 +2,8 @@
 // every stage kind that follows them: the concurrent stage (bodies in a
 // gas, on the shared grid) and the DPD-only stages (dpd_run,
 // dpd_equilibrate), so that a pair run DPD-only and in the gas is measured
-// by the same keys, outputs and rule (analysis/neck_width.hpp).
+// by the same keys, outputs and rule (analysis/neck_width.hpp). md_bodies
+// declares the same keys for atoms itself: md_driver links only core.
 #pragma once
 
 #include <string>
