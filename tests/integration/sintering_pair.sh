@@ -1,11 +1,12 @@
 source "$(dirname "$0")/lib.sh"
 # Two copper spheres sintering (seed §6.2.2, assembly 0; issue 31), a short
-# run of configs/sintering.yaml: without gas and at 1 GPa, 10 ps each after
-# a 10 ps sphere. Against references the program did not make:
+# run of configs/sintering.yaml: without gas for 10 ps and at 1 GPa for 8 ps
+# (224,444 gas points on the grid of a_cg/2, about 9 steps/s on two cores),
+# after a 10 ps sphere. Against references the program did not make:
 #  - the seed's counts: 1,048 particles in a sphere of radius 4 a_cg about an
 #    octahedral site, 2,096 in the pair built from two copies (initial.pieces);
-#  - a neck forms at 1 GPa within 15 ps (the issue's bound; the seed: from
-#    about 5 ps), and without gas;
+#  - a neck forms at 1 GPa within the run's 8 ps, inside the issue's 15 ps
+#    (the seed: from about 5 ps; here 5.4 ps), and without gas;
 #  - before contact there is no neck, and the spheres do not start touching
 #    (7.23 Å apart on the ideal lattice, 6.3-6.6 Å after their surfaces
 #    relax: beyond 1.1 nearest-neighbour distances, 5.62 Å); the first neck
@@ -18,9 +19,12 @@ import yaml
 config = yaml.safe_load(open(sys.argv[1]))
 config["run"] = {"name": "sintering", "seed": 2026, "output": "runs"}
 config["launch"] = {"dpd": 1, "mpm": 1}
+for m in config["materials"].values():
+    if "potential_file" in m:  # relative to the original config
+        m["potential_file"] = sys.argv[1].rsplit("/", 1)[0] + "/" + m["potential_file"]
 config["stages"] = [s for s in config["stages"] if s["name"] in ("sphere", "pair_dpd_only", "pair_1GPa")]
 for s in config["stages"]:
-    s["steps"] = 1000
+    s["steps"] = 800 if s["name"] == "pair_1GPa" else 1000
     if s["name"] != "sphere":
         s["neck_stable_time"] = "3 ps"
         s["particles_every"] = 0
