@@ -8,7 +8,7 @@ source "$(dirname "$0")/lib.sh"
 #  - a neck forms at 1 GPa within the run's 8 ps, inside the issue's 15 ps
 #    (the seed: from about 5 ps; here 5.4 ps), and without gas;
 #  - before contact there is no neck, and the spheres do not start touching
-#    (7.23 Å apart on the ideal lattice, 6.3-6.6 Å after their surfaces
+#    (7.23 Å apart on the ideal lattice, 7.7-8.2 Å after their surfaces
 #    relax: beyond 1.1 nearest-neighbour distances, 5.62 Å); the first neck
 #    comes no earlier than the first touch;
 #  - mass kept and momentum, walls' impulse counted, to round-off;
