@@ -153,7 +153,8 @@ Param gas() {
            .def(15.0)
            .at_least(0),
        Param::real("settle_time", Dimension::kTime,
-                   "gas_pressure is the mean of the samples from this time on")
+                   "gas_pressure and gas_pressure_on_walls are the means of the samples from "
+                   "this time on")
            .def(0.0)
            .at_least(0),
        Param::real("flip", Dimension::kNone,
@@ -341,8 +342,15 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       {"gas_pressure_target", OutputSpec::Shape::kScalar, "GPa", "gas.pressure (gas)"},
       {"gas_pressure_error", OutputSpec::Shape::kScalar, "1",
        "gas_pressure over its target, minus one (gas)"},
+      {"gas_pressure_on_walls", OutputSpec::Shape::kScalar, "GPa",
+       "The walls' mean pressure (their inward push over time and area: a manometer's "
+       "reading, in which no point's state enters) over the samples from gas.settle_time on "
+       "(gas, walls)"},
+      {"gas_pressure_on_walls_error", OutputSpec::Shape::kScalar, "1",
+       "gas_pressure_on_walls over its target, minus one (gas, walls)"},
       {"gas_pressure_series", OutputSpec::Shape::kTable, "",
-       "Each sample: the gas pressure away from the body and over every gas point (gas)"},
+       "Each sample: the gas pressure away from the body and over every gas point, and the "
+       "walls' mean pressure since the sample before (gas)"},
       {"wall_impulse", OutputSpec::Shape::kScalar, "g/mol*Å/ps",
        "Magnitude of the momentum the walls took from the gas over the run (gas)"},
       {"rod_<name>", OutputSpec::Shape::kTable, "", "Each sample: the rod's bend"},

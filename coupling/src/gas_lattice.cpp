@@ -31,6 +31,21 @@ class Bins {
     }
     return false;
   }
+  // How many positions lie within `d` of p, d no more than the bin edge.
+  [[nodiscard]] std::size_t count_within(const Vec3& p, double d) const {
+    const auto b = bin_of(p);
+    std::size_t n = 0;
+    for (std::int64_t i = -1; i <= 1; ++i) {
+      for (std::int64_t j = -1; j <= 1; ++j) {
+        for (std::int64_t k = -1; k <= 1; ++k) {
+          const auto it = bins_.find(key({b[0] + i, b[1] + j, b[2] + k}));
+          if (it == bins_.end()) continue;
+          for (const std::size_t q : it->second) n += distance_squared(p, x_[q]) <= d * d ? 1 : 0;
+        }
+      }
+    }
+    return n;
+  }
 
  private:
   [[nodiscard]] std::array<std::int64_t, 3> bin_of(const Vec3& p) const {
@@ -64,8 +79,21 @@ std::vector<bool> near_body(const std::vector<Vec3>& points, const std::vector<V
   return near;
 }
 
+std::vector<bool> in_interstices(const std::vector<Vec3>& points, const std::vector<Vec3>& body,
+                                 double lattice_constant) {
+  std::vector<bool> inside(points.size(), false);
+  if (body.empty() || !(lattice_constant > 0.0)) return inside;
+  const double reach = kInterstitialReach * lattice_constant;
+  const Bins bins(body, reach);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    inside[i] = bins.count_within(points[i], reach) >= kInterstitialNeighbours;
+  }
+  return inside;
+}
+
 std::vector<Vec3> gas_sites(const GasParams& gas, const geometry::Box& box,
-                            const std::array<bool, 3>& periodic, const std::vector<Vec3>& body) {
+                            const std::array<bool, 3>& periodic, const std::vector<Vec3>& body,
+                            double lattice_constant) {
   // Sites k with lo <= origin + k s <= hi (< hi on a periodic axis), a
   // hair of slack so that sites on the faces are kept.
   std::array<std::int64_t, 3> first{}, last{};
@@ -91,9 +119,10 @@ std::vector<Vec3> gas_sites(const GasParams& gas, const geometry::Box& box,
     }
   }
   const std::vector<bool> taken = near_body(sites, body, gas.clearance);
+  const std::vector<bool> inside = in_interstices(sites, body, lattice_constant);
   std::vector<Vec3> free;
   for (std::size_t s = 0; s < sites.size(); ++s) {
-    if (!taken[s]) free.push_back(sites[s]);
+    if (!taken[s] && !inside[s]) free.push_back(sites[s]);
   }
   return free;
 }

@@ -87,7 +87,8 @@ void add_gas(SplitBody& body, const ConcurrentParams& cp, const geometry::Box& b
     solid.push_back(p.x);
     next_id = std::max(next_id, p.id + 1);
   }
-  const std::vector<Vec3> sites = coupling::gas_sites(gas, box, cp.periodic, solid);
+  const std::vector<Vec3> sites =
+      coupling::gas_sites(gas, box, cp.periodic, solid, cp.material_lattice_constant);
   const std::vector<bool> near = coupling::near_body(sites, solid, gas.probe_distance);
   for (std::size_t s = 0; s < sites.size(); ++s) {
     coupling::HandedPoint p{next_id++, sites[s], {0.0, 0.0, 0.0}, gas.point_mass(), 0};

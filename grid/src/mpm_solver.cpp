@@ -375,10 +375,20 @@ void MpmSolver::apply_node_constraints(const BoundaryConditions& bc, std::vector
 
 // The momentum the constraints are about to give the nodes (each node
 // counted on one rank only): sum of m (v_held - v) over the held axes, which
-// both PIC and FLIP hand on to the points whole.
-Vec3 MpmSolver::node_constraint_impulse(const BoundaryConditions& bc) const {
+// both PIC and FLIP hand on to the points whole. `face_push`: the part
+// along the inward normal of entries that hold one of the grid's outer
+// node planes.
+Vec3 MpmSolver::node_constraint_impulse(const BoundaryConditions& bc, double& face_push) const {
   Vec3 impulse{0.0, 0.0, 0.0};
+  face_push = 0.0;
+  const NodeBox all = patch_.domain.node_box();
   for (const auto& c : bc.nodes) {
+    Vec3 inward{0.0, 0.0, 0.0};
+    for (size_t a = 0; a < 3; ++a) {
+      if (!c.axis[a] || c.nodes.hi[a] - c.nodes.lo[a] != 1) continue;
+      if (c.nodes.lo[a] == all.lo[a]) inward[a] = 1.0;
+      if (c.nodes.lo[a] == all.hi[a] - 1) inward[a] = -1.0;
+    }
     const auto box = c.nodes.intersected(patch_.nodes);
     for (int k = box.lo[2]; k < box.hi[2]; ++k) {
       for (int j = box.lo[1]; j < box.hi[1]; ++j) {
@@ -387,7 +397,10 @@ Vec3 MpmSolver::node_constraint_impulse(const BoundaryConditions& bc) const {
           const double mass = sums_[li].lanes[sums::kMass];
           if (!unique_node_[li] || !(mass > mass_floor_)) continue;
           for (size_t a = 0; a < 3; ++a) {
-            if (c.axis[a]) impulse[a] += mass * (c.velocity[a] - velocity_[li][a]);
+            if (!c.axis[a]) continue;
+            const double j = mass * (c.velocity[a] - velocity_[li][a]);
+            impulse[a] += j;
+            face_push += inward[a] * j;
           }
         }
       }
@@ -906,7 +919,7 @@ void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
       velocity_[i] = acceleration_[i] = {0.0, 0.0, 0.0};
     }
   }
-  constraint_impulse_ = node_constraint_impulse(bc);
+  constraint_impulse_ = node_constraint_impulse(bc, outer_face_push_);
   apply_node_constraints(bc, velocity_, true);
   hold_rigid_nodes(bc, dt);
   for (size_t i = 0; i < sums_.size(); ++i) {

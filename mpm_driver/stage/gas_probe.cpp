@@ -21,13 +21,32 @@ std::array<double, 3> GasProbe::total_impulse() const {
 void GasProbe::after_step(const MpmEngine& engine) {
   const grid::Vec3& j = engine.solver().node_constraint_impulse();
   for (std::size_t a = 0; a < 3; ++a) impulse_[a] += j[a];
+  push_ += engine.solver().outer_face_push();
+}
+
+double GasProbe::wall_area(const MpmEngine& engine) {
+  const auto& m = engine.model();
+  const auto cells = m.grid.cells();
+  double area = 0.0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (m.periodic[a]) continue;
+    double face = 1.0;
+    for (std::size_t b = 0; b < 3; ++b) {
+      if (b != a) face *= static_cast<double>(cells[b]) * m.grid.cell_size();
+    }
+    area += 2.0 * face;
+  }
+  return area;
 }
 
 // Volume-weighted means of P = -tr(sigma)/3, each point's volume its mass
-// over its density.
+// over its density; and the walls' mean pressure since the last sample,
+// their inward push over that time and their area: a manometer's reading,
+// which no point's state enters.
 void GasProbe::sample(double t, const MpmEngine& engine) {
   const grid::MaterialPoints& p = engine.points();
-  double sums[4] = {0.0, 0.0, 0.0, 0.0};  // away: P V, V; all: P V, V
+  double sums[5] = {0.0, 0.0, 0.0, 0.0, push_};  // away: P V, V; all: P V, V; push
+  push_ = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.material[i] != material_) continue;
     const double v = p.mass[i] / p.state[i].density;
@@ -39,8 +58,13 @@ void GasProbe::sample(double t, const MpmEngine& engine) {
     sums[2] += pv;
     sums[3] += v;
   }
-  mpi::check(MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, comm_),
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm_),
              "MPI_Allreduce (gas pressure)");
+  const double area = wall_area(engine);
+  const double span = time_.empty() ? 0.0 : t - time_.back();
+  wall_pressure_.push_back(span > 0.0 && area > 0.0
+                               ? sums[4] * units::kMvv2e / (span * area) * units::kBarPerEvPerA3
+                               : std::nan(""));
   time_.push_back(t);
   away_pressure_.push_back(sums[1] > 0.0 ? sums[0] / sums[1] : std::nan(""));
   all_pressure_.push_back(sums[3] > 0.0 ? sums[2] / sums[3] : std::nan(""));
@@ -48,25 +72,38 @@ void GasProbe::sample(double t, const MpmEngine& engine) {
 
 void GasProbe::report(StageResults& r, std::int64_t gas_points) const {
   constexpr double kGPa = 1.0 / units::kBarPerGPa;
-  std::vector<double> away, all;
-  double sum = 0.0, n = 0.0;
+  std::vector<double> away, all, walls;
+  double sum = 0.0, n = 0.0, wall_sum = 0.0, wall_n = 0.0;
   for (std::size_t k = 0; k < time_.size(); ++k) {
     away.push_back(away_pressure_[k] * kGPa);
     all.push_back(all_pressure_[k] * kGPa);
-    if (time_[k] >= gas_.settle_time - 1e-9) {
-      sum += away.back();
-      n += 1.0;
+    walls.push_back(wall_pressure_[k] * kGPa);
+    if (time_[k] < gas_.settle_time - 1e-9) continue;
+    sum += away.back();
+    n += 1.0;
+    // A wall sample is the mean since the one before: it counts when that
+    // span began after the settling.
+    if (k > 0 && time_[k - 1] >= gas_.settle_time - 1e-9 && std::isfinite(walls.back())) {
+      wall_sum += walls.back();
+      wall_n += 1.0;
     }
   }
   r.add_column("gas_pressure_series", "time", "ps", time_);
   r.add_column("gas_pressure_series", "pressure_away_from_body", "GPa", away);
   r.add_column("gas_pressure_series", "pressure_all_gas", "GPa", all);
+  r.add_column("gas_pressure_series", "pressure_on_walls", "GPa", walls);
   r.add_scalar("gas_points", static_cast<double>(gas_points), "1");
   const double target = gas_.pressure * kGPa;
   r.add_scalar("gas_pressure_target", target, "GPa");
   if (n > 0.0) {
     r.add_scalar("gas_pressure", sum / n, "GPa");
     if (target > 0.0) r.add_scalar("gas_pressure_error", sum / n / target - 1.0, "1");
+  }
+  if (wall_n > 0.0) {
+    r.add_scalar("gas_pressure_on_walls", wall_sum / wall_n, "GPa");
+    if (target > 0.0) {
+      r.add_scalar("gas_pressure_on_walls_error", wall_sum / wall_n / target - 1.0, "1");
+    }
   }
   const std::array<double, 3> total = total_impulse();
   r.add_scalar("wall_impulse", std::hypot(total[0], total[1], total[2]), "g/mol*Å/ps");
@@ -78,6 +115,11 @@ void GasProbe::save(CheckpointArchive& a) const {
   a.put("gas/time", time_);
   a.put("gas/away", away_pressure_);
   a.put("gas/all", all_pressure_);
+  a.put("gas/walls", wall_pressure_);
+  double push = push_;
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, &push, 1, MPI_DOUBLE, MPI_SUM, comm_),
+             "MPI_Allreduce (wall push)");
+  a.put("gas/push", std::vector<double>{push});
 }
 
 void GasProbe::load(const CheckpointArchive& a) {
@@ -88,6 +130,8 @@ void GasProbe::load(const CheckpointArchive& a) {
   time_ = a.get("gas/time");
   away_pressure_ = a.get("gas/away");
   all_pressure_ = a.get("gas/all");
+  wall_pressure_ = a.get("gas/walls");
+  push_ = rank == 0 ? a.get("gas/push").at(0) : 0.0;
 }
 
 }  // namespace pbms::mpm

@@ -24,7 +24,8 @@ class GasProbe {
   GasProbe(MPI_Comm comm, const coupling::GasParams& gas, int gas_material,
            std::uint32_t away_mask);
 
-  // After each step: adds the walls' impulse of this rank's nodes.
+  // After each step: adds the walls' impulse of this rank's nodes, and
+  // their inward push.
   void after_step(const MpmEngine& engine);
   // The walls' impulse since the start, this rank's share (a ledger row's).
   [[nodiscard]] const std::array<double, 3>& wall_impulse() const { return impulse_; }
@@ -47,8 +48,13 @@ class GasProbe {
   coupling::GasParams gas_;
   int material_;
   std::uint32_t away_;
+  // The area of the grid's walls (Å²): its outer faces on the axes that
+  // are not periodic.
+  [[nodiscard]] static double wall_area(const MpmEngine& engine);
+
   std::array<double, 3> impulse_{};
-  std::vector<double> time_, away_pressure_, all_pressure_;  // ps, bar, bar
+  double push_ = 0.0;  // the walls' inward push since the last sample, this rank's
+  std::vector<double> time_, away_pressure_, all_pressure_, wall_pressure_;  // ps, bar
 };
 
 }  // namespace pbms::mpm

@@ -75,6 +75,10 @@ with h5py.File(f"{run}/results.h5", "r") as f:
             bad.append(f"{s}: not the seed's 4,631 particles and 7,930 gas points")
         if abs(reached / target - 1.0) > 0.05:
             bad.append(f"{s}: gas at {reached:.4g} GPa, more than 5 % off {target:g}")
+        walls = scalar(s, "gas_pressure_on_walls")
+        print(f"  the walls' pressure {walls:.5g} GPa ({100 * (walls / target - 1.0):+.2f} %)")
+        if target >= 0.5 and abs(walls / target - 1.0) > 0.05:
+            bad.append(f"{s}: the walls feel {walls:.4g} GPa, more than 5 % off {target:g}")
         if scalar(s, "momentum_change") > 1e-12:
             bad.append(f"{s}: momentum changed by {scalar(s, 'momentum_change'):.3g} of M c")
         if target < 2.0 and abs(scalar(s, "dpd_temperature") / 298.0 - 1.0) > 0.03:

@@ -43,7 +43,7 @@ TEST(GasLattice, TheSeedsInclusionLeavesTwentyOneCubedLessElevenCubedSites) {
   const auto cube = closed_fcc_block(10, 7.23, {36.15, 36.15, 36.15});
   ASSERT_EQ(cube.size(), 4631U);
   const geometry::Box box{{0.0, 0.0, 0.0}, {144.6, 144.6, 144.6}};
-  const auto sites = gas_sites(inclusion_gas(), box, {false, false, false}, cube);
+  const auto sites = gas_sites(inclusion_gas(), box, {false, false, false}, cube, 7.23);
   EXPECT_EQ(sites.size(), 21U * 21 * 21 - 11U * 11 * 11);
   // None is within the clearance of the cube; the nearest lie a spacing off
   // its faces.
@@ -56,8 +56,8 @@ TEST(GasLattice, TheSeedsInclusionLeavesTwentyOneCubedLessElevenCubedSites) {
 // are not laid twice.
 TEST(GasLattice, PeriodicAxesLeaveOutTheUpperFace) {
   const geometry::Box box{{0.0, 0.0, 0.0}, {72.3, 72.3, 72.3}};
-  EXPECT_EQ(gas_sites(inclusion_gas(), box, {false, false, false}, {}).size(), 11U * 11 * 11);
-  EXPECT_EQ(gas_sites(inclusion_gas(), box, {true, false, false}, {}).size(), 10U * 11 * 11);
+  EXPECT_EQ(gas_sites(inclusion_gas(), box, {false, false, false}, {}, 7.23).size(), 11U * 11 * 11);
+  EXPECT_EQ(gas_sites(inclusion_gas(), box, {true, false, false}, {}, 7.23).size(), 10U * 11 * 11);
 }
 
 // The binned search answers as the all-pairs one does.
@@ -78,4 +78,45 @@ TEST(GasLattice, NearBodyAgreesWithAllPairs) {
     }
     EXPECT_EQ(near[i], any) << "point " << i;
   }
+}
+
+// A gas lattice of half the crystal's lattice constant, aligned with it,
+// has a site on every fcc site and every octahedral hole of a block: the
+// (2n+1)³ points of spacing a/2 that the closed block spans. All of them
+// go, the holes on its faces and edges included, and no site outside: the
+// next plane out, half a lattice constant off the faces, is kept whole.
+// With the clearance alone the holes inside would be gas.
+TEST(GasLattice, AFinerLatticeLeavesNoGasInTheCrystalsHoles) {
+  const double a = 7.23;
+  const int n = 4;
+  const auto block = closed_fcc_block(n, a, {4 * a, 4 * a, 4 * a});
+  GasParams g;
+  g.spacing = 0.5 * a;
+  g.origin = {0.0, 0.0, 0.0};
+  g.clearance = 0.75 * g.spacing;
+  const geometry::Box box{{0.0, 0.0, 0.0}, {(2 * 4 + n) * a, (2 * 4 + n) * a, (2 * 4 + n) * a}};
+  const std::size_t lattice = (2 * (2 * 4 + n) + 1) * (2 * (2 * 4 + n) + 1) * (2 * (2 * 4 + n) + 1);
+  const std::size_t spanned = (2 * n + 1) * (2 * n + 1) * (2 * n + 1);
+  EXPECT_EQ(gas_sites(g, box, {false, false, false}, block, a).size(), lattice - spanned);
+  EXPECT_LT(gas_sites(g, box, {false, false, false}, block, 0.0).size(),
+            lattice - block.size() + 1);
+  EXPECT_GT(gas_sites(g, box, {false, false, false}, block, 0.0).size(), lattice - spanned + 300);
+}
+
+// The rule holds under thermal displacements: each site moved at random by
+// up to 0.3 Å (copper's mesoparticles at 298 K move about 0.1 Å rms).
+TEST(GasLattice, TheHolesAreFoundInAThermalCrystal) {
+  const double a = 7.23;
+  auto block = closed_fcc_block(4, a, {4 * a, 4 * a, 4 * a});
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.3 / std::sqrt(3.0), 0.3 / std::sqrt(3.0));
+  for (auto& x : block) {
+    for (auto& c : x) c += u(rng);
+  }
+  GasParams g;
+  g.spacing = 0.5 * a;
+  g.origin = {0.0, 0.0, 0.0};
+  g.clearance = 0.75 * g.spacing;
+  const geometry::Box box{{0.0, 0.0, 0.0}, {12 * a, 12 * a, 12 * a}};
+  EXPECT_EQ(gas_sites(g, box, {false, false, false}, block, a).size(), 25U * 25 * 25 - 9U * 9 * 9);
 }

@@ -516,3 +516,49 @@ TEST(MpmSolver, OwnFieldKeepsMomentumAndAUniformGasItsDensity) {
   };
   EXPECT_LT(spread(stirred), 0.5 * spread(flip));
 }
+
+// A gas at rest at pressure P in a closed box (walls on every face, one
+// point at each cell centre): in the first step the walls hold every
+// outer node against the gas, and their inward push is P times the walls'
+// area times the step, to round-off (the discrete divergence theorem over
+// the face planes); the constraint impulse itself cancels face against face.
+TEST(MpmSolver, OuterFacePushIsThePressureOnTheWalls) {
+  const grid::RegularGrid g{{0, 0, 0}, 1.5, {4, 5, 6}};
+  const std::array<bool, 3> closed{false, false, false};
+  const grid::GridPartition part{g, closed, 1};
+  mpi::HaloSum halo{MPI_COMM_SELF, part};
+  GridPatch patch{g, part.nodes_of(0), closed, [&](double* d, int c, int s) { halo.sum(d, c, s); }};
+  std::vector<std::unique_ptr<Material>> mats;
+  mats.push_back(MaterialRegistry::create("ideal_gas", {}));
+  const double pressure = 2.5;
+  const MaterialPointState s0 = mats[0]->initial_state(0.7, pressure);
+  MpmSolver solver(patch, grid::ShapeFunctionRegistry::create("linear"), std::move(mats), {});
+  MaterialPoints pts;
+  const double h = g.cell_size(), v = h * h * h;
+  for (int k = 0; k < 6; ++k) {
+    for (int j = 0; j < 5; ++j) {
+      for (int i = 0; i < 4; ++i) {
+        pts.add(30 * k + 4 * j + i, {(i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h}, v, s0, 0);
+      }
+    }
+  }
+  BoundaryConditions bc;
+  const NodeBox all = g.node_box();
+  for (size_t a = 0; a < 3; ++a) {
+    for (const int plane : {all.lo[a], all.hi[a] - 1}) {
+      NodeConstraint wall;
+      wall.nodes = all;
+      wall.nodes.lo[a] = plane;
+      wall.nodes.hi[a] = plane + 1;
+      wall.axis[a] = true;
+      bc.nodes.push_back(wall);
+    }
+  }
+  const double dt = 0.01;
+  solver.step(pts, bc, dt);
+  const double area = 2.0 * h * h * (4.0 * 5.0 + 4.0 * 6.0 + 5.0 * 6.0);
+  const double expected = pressure * area * dt;  // consistent units
+  EXPECT_NEAR(solver.outer_face_push(), expected, 1e-12 * expected);
+  for (size_t a = 0; a < 3; ++a)
+    EXPECT_NEAR(solver.node_constraint_impulse()[a], 0.0, 1e-12 * expected);
+}

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "pbms/coupling/concurrent_params.hpp"
@@ -18,11 +19,29 @@ namespace pbms::coupling {
 [[nodiscard]] std::vector<bool> near_body(const std::vector<geometry::Vec3>& points,
                                           const std::vector<geometry::Vec3>& body, double distance);
 
+// An fcc crystal's holes have 4 (tetrahedral, at 0.433 a) or 6
+// (octahedral, at 0.5 a) sites around them within 0.55 a; a point outside
+// a surface has at most 2 there (above a bridge), whatever its distance.
+inline constexpr double kInterstitialReach = 0.55;  // lattice constants
+inline constexpr std::size_t kInterstitialNeighbours = 4;
+
+// For each of `points`, whether it lies in a hole of the body's fcc crystal
+// of `lattice_constant`: kInterstitialNeighbours or more body positions
+// within kInterstitialReach lattice constants. A gas lattice finer than
+// the crystal has sites there that no clearance small enough to let the gas
+// reach the surface removes.
+[[nodiscard]] std::vector<bool> in_interstices(const std::vector<geometry::Vec3>& points,
+                                               const std::vector<geometry::Vec3>& body,
+                                               double lattice_constant);
+
 // The lattice sites of `gas` within `box` (its faces included on the axes
 // not `periodic`, the upper face left out on periodic ones, where it is the
-// lower face's image) farther than gas.clearance from every body position.
+// lower face's image) farther than gas.clearance from every body position
+// and not in the holes of the body's crystal (in_interstices; a
+// `lattice_constant` of 0 skips that).
 [[nodiscard]] std::vector<geometry::Vec3> gas_sites(const GasParams& gas, const geometry::Box& box,
                                                     const std::array<bool, 3>& periodic,
-                                                    const std::vector<geometry::Vec3>& body);
+                                                    const std::vector<geometry::Vec3>& body,
+                                                    double lattice_constant);
 
 }  // namespace pbms::coupling

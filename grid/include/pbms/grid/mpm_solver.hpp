@@ -168,6 +168,10 @@ class MpmSolver {
   // The momentum the node constraints (walls) gave this rank's nodes in the
   // last step, each node on one rank only (g/mol Å/ps in metal units).
   [[nodiscard]] const Vec3& node_constraint_impulse() const { return constraint_impulse_; }
+  // Of that, what the constraints on the grid's outer node planes gave
+  // along their inward normals, summed (g/mol Å/ps): over a time and the
+  // faces' area, the pressure a material pressed on those walls.
+  [[nodiscard]] double outer_face_push() const { return outer_face_push_; }
   // Between update_nodes and map_to_points: the mass on entry c's held
   // nodes (over the nodes this rank counts), and a change dv of those
   // nodes' velocity on the axes it holds (every copy; the caller changes
@@ -271,7 +275,7 @@ class MpmSolver {
   void scatter(const Eval& eval, const MaterialPoints& points, const BoundaryConditions& bc,
                bool force);
   void nodal_velocities(const BoundaryConditions& bc, std::vector<Vec3>& out) const;
-  [[nodiscard]] Vec3 node_constraint_impulse(const BoundaryConditions& bc) const;
+  [[nodiscard]] Vec3 node_constraint_impulse(const BoundaryConditions& bc, double& face_push) const;
   void apply_node_constraints(const BoundaryConditions& bc, std::vector<Vec3>& field,
                               bool is_velocity) const;
   // Packs two nodal vector fields into kin_ for the point passes.
@@ -345,6 +349,7 @@ class MpmSolver {
   std::vector<OtherHold> others_held_;
   std::vector<Vec3> reaction_;
   Vec3 constraint_impulse_{0.0, 0.0, 0.0};
+  double outer_face_push_ = 0.0;
   std::vector<std::vector<double>>
       rigid_;  // per point_velocities entry: its points' share of each node's mass
   std::vector<char> unique_node_;
