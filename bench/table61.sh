@@ -24,15 +24,13 @@ cd "$work"
 PBMS_PS=10
 MD_PS=2
 
-/usr/bin/python3 - "$ROOT/configs/sintering.yaml" "$PBMS_PS" > pair.yaml <<'PY'
+PYTHONPATH="$ROOT/tests/integration" /usr/bin/python3 - "$ROOT/configs/sintering.yaml" "$PBMS_PS" > pair.yaml <<'PY'
 import sys
 import yaml
-config = yaml.safe_load(open(sys.argv[1]))
+import derived_config
+config = derived_config.load(sys.argv[1])
 config["run"] = {"name": "table61", "seed": 2026, "output": "runs"}
 config["launch"] = {"dpd": 1, "mpm": 1}
-for m in config["materials"].values():
-    if "potential_file" in m:  # relative to the original config
-        m["potential_file"] = sys.argv[1].rsplit("/", 1)[0] + "/" + m["potential_file"]
 config["stages"] = [s for s in config["stages"] if s["name"] in ("sphere", "pair_1GPa")]
 for s in config["stages"]:
     if s["name"] == "pair_1GPa":

@@ -35,11 +35,11 @@ export PBMS_SKIP_BUILD=1
 TMP="$(mktemp -d -t pbms-bad-configs.XXXXXX)"
 trap 'rm -rf "$TMP"' EXIT
 mkdir "$TMP/bin"
-MARKER="$TMP/mpirun-was-started"
-cat >"$TMP/bin/mpirun" <<EOF
+cat >"$TMP/bin/mpirun" <<'EOF'
 #!/bin/sh
-# Fake mpirun: records that it was started and fails loudly.
-touch "$MARKER"
+# Fake mpirun: records that it was started (in the case's own marker) and
+# fails loudly.
+touch "$PBMS_TEST_MPIRUN_MARKER"
 exit 99
 EOF
 chmod +x "$TMP/bin/mpirun"
@@ -63,13 +63,16 @@ expected_substring() {
 
 # Checks one case (a path relative to ROOT, or absolute); prints nothing and
 # returns 0 if it passes, else prints the reason. COMMAND is run or validate.
+# Each case has its own files, so that two run at once.
 check_case() {
-  local rel="$1" command="${2:-run}" file expect rc out="$TMP/stdout" err="$TMP/stderr"
+  local rel="$1" command="${2:-run}" file expect rc own
+  own="$(mktemp -d "$TMP/case.XXXXXX")"
+  local out="$own/stdout" err="$own/stderr" MARKER="$own/mpirun-was-started"
   case "$rel" in /*) file="$rel" ;; *) file="$ROOT/$rel" ;; esac
   expect="$(expected_substring "$file")" ||
     { echo "no '# expect: ' first line and no .expect sibling"; return 1; }
-  rm -f "$MARKER"
-  (cd "$ROOT" && PATH="$TMP/bin:$PATH" ./pbms "$command" "$rel") </dev/null >"$out" 2>"$err"
+  (cd "$ROOT" && PBMS_TEST_MPIRUN_MARKER="$MARKER" PATH="$TMP/bin:$PATH" ./pbms "$command" "$rel") \
+    </dev/null >"$out" 2>"$err"
   rc=$?
   local reasons=()
   [ "$rc" -eq 1 ] || reasons+=("exit code $rc, expected 1")
@@ -141,28 +144,33 @@ echo "huge_potential.data:1:1: error: <document>: the file is" >"$GEN/potential_
 } >"$GEN/deep_nesting.yaml"
 echo "error: <document>: lists and maps are nested too deep" >"$GEN/deep_nesting.expect"
 
-passed=0
-failed=0
-report() {  # report NAME REASON STATUS
-  if [ "$3" -eq 0 ]; then
+# One case: "ok NAME" or "FAIL NAME: reason" (NAME REL [COMMAND]).
+report_case() {
+  local reason
+  if reason="$(check_case "$2" "${3:-run}")"; then
     echo "ok $1"
-    passed=$((passed + 1))
   else
-    echo "FAIL $1: $2"
-    failed=$((failed + 1))
+    echo "FAIL $1: $reason"
   fi
 }
+export -f report_case check_case expected_substring
+export ROOT TMP ERROR_LINE_RE
+# The cases, two at a time (each is mostly the launcher's and the drivers'
+# start-up), their lines in the cases' order.
 shopt -s nullglob
-for path in "$ROOT/$BAD_DIR"/* "$GEN"/*.yaml; do
-  [ -f "$path" ] || continue
-  case "$path" in *.expect) continue ;; esac
-  name="$(basename "$path")"
-  case "$path" in "$GEN"/*) rel="$path" ;; *) rel="$BAD_DIR/$name" ;; esac
-  reason="$(check_case "$rel")"
-  report "$name" "$reason" $?
-done
-reason="$(check_case "$GEN/one_line_5mb.yaml" validate)"
-report "one_line_5mb.yaml (./pbms validate)" "$reason" $?
+{
+  for path in "$ROOT/$BAD_DIR"/* "$GEN"/*.yaml; do
+    [ -f "$path" ] || continue
+    case "$path" in *.expect) continue ;; esac
+    name="$(basename "$path")"
+    case "$path" in "$GEN"/*) rel="$path" ;; *) rel="$BAD_DIR/$name" ;; esac
+    printf '%s\0%s\0run\0' "$name" "$rel"
+  done
+  printf '%s\0%s\0validate\0' "one_line_5mb.yaml (./pbms validate)" "$GEN/one_line_5mb.yaml"
+} | xargs -0 -n 3 -P 2 bash -c 'report_case "$@"' _ >"$TMP/report"
+cat "$TMP/report"
+passed=$(grep -c '^ok ' "$TMP/report")
+failed=$(grep -c '^FAIL ' "$TMP/report")
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]

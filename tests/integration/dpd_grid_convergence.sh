@@ -9,11 +9,9 @@ base="$ROOT/configs/dpd_grid_tension.yaml"
 for seed in 11 12 13; do
   "$PY" - "$base" "$seed" > "grid_$seed.yaml" <<'PYEOF'
 import copy, sys, yaml
-cfg = yaml.safe_load(open(sys.argv[1]))
+import derived_config
+cfg = derived_config.load(sys.argv[1])
 cfg["run"] = {"name": f"grid_convergence_{sys.argv[2]}", "seed": int(sys.argv[2])}
-for m in cfg["materials"].values():
-    if "potential_file" in m:  # relative to the original config
-        m["potential_file"] = sys.argv[1].rsplit("/", 1)[0] + "/" + m["potential_file"]
 stages = [s for s in cfg["stages"] if s["name"] in ("equilibrate", "tension_dpd_only")]
 grid = next(s for s in cfg["stages"] if s["name"] == "tension")
 for h in (8, 4, 2):

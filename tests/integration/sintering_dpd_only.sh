@@ -19,11 +19,9 @@ ALL=0
 "$PY" - "$CONFIG" "$ALL" > pair.yaml <<'PYEOF'
 import sys
 import yaml
-config = yaml.safe_load(open(sys.argv[1]))
+import derived_config
+config = derived_config.load(sys.argv[1])
 config["run"] = {"name": "pair", "seed": 2026, "output": "runs"}
-for m in config["materials"].values():
-    if "potential_file" in m:
-        m["potential_file"] = sys.argv[1].rsplit("/", 1)[0] + "/" + m["potential_file"]
 if sys.argv[2] != "1":
     config["launch"] = {"dpd": 1}
     del config["materials"]["cu_mishin"]

@@ -20,9 +20,12 @@ namespace pbms::coupling {
                                           const std::vector<geometry::Vec3>& body, double distance);
 
 // An fcc crystal's holes have 4 (tetrahedral, at 0.433 a) or 6
-// (octahedral, at 0.5 a) sites around them within 0.55 a; a point outside
-// a surface has at most 2 there (above a bridge), whatever its distance.
-inline constexpr double kInterstitialReach = 0.55;  // lattice constants
+// (octahedral, at 0.5 a) sites around them within 0.6 a, with room for a
+// relaxed surface's holes (their fourth neighbour measured at 0.555 a in a
+// ball of 141 particles at 298 K); a point outside a surface has at most 3
+// there (a (111) hollow), or 4 only when it sits within 0.33 a of a (100)
+// face's plane, inside the surface's own half plane spacing.
+inline constexpr double kInterstitialReach = 0.6;  // lattice constants
 inline constexpr std::size_t kInterstitialNeighbours = 4;
 
 // For each of `points`, whether it lies in a hole of the body's fcc crystal
