@@ -171,6 +171,9 @@ int main(int argc, char** argv) {
                    "give one of them\n";
       return 1;
     }
+    // The daemon asks the drivers for their descriptions itself (each ask
+    // starts every driver once).
+    if (*daemon) return run_as_daemon(argc, argv, a);
     const auto drivers = pbms::coupler::discover_drivers(a.drivers_dir);
     if (*reference) {
       std::cout << pbms::coupler::config_reference_markdown(drivers);
@@ -179,7 +182,6 @@ int main(int argc, char** argv) {
     if (*describe) return describe_drivers(drivers);
     if (*validate) return validate_workflow(a, drivers);
     if (*plan) return plan_run(a, drivers);
-    if (*daemon) return run_as_daemon(argc, argv, a);
   } catch (const std::exception& e) {
     std::cerr << "pbms: error: " << e.what() << "\n";
     return 1;
