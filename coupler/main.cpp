@@ -148,9 +148,7 @@ int run_as_daemon(int argc, char** argv, const Args& a) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_coupler(int argc, char** argv) {
   CLI::App app{"PBMS coupler: the coupling daemon and pre-launch checks. Users run ./pbms."};
   app.require_subcommand(1);
   Args a;
@@ -187,4 +185,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+// CLI11's set-up may throw (bad_alloc at least): nothing leaves main.
+int main(int argc, char** argv) {
+  try {
+    return run_coupler(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "pbms: error: coupler: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "pbms: error: coupler: an unknown exception\n";
+  }
+  return 1;
 }
