@@ -54,6 +54,11 @@ DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings,
                          const grid::RegularGrid& grid, const std::array<bool, 3>& periodic)
     : engine_(engine), settings_(settings) {
+  if (settings.move == grid::PointMove::kMidpoint) {
+    throw Error(
+        "DPD/MPM grid: the midpoint move needs the whole nodal sums in the DPD program; "
+        "on a grid another program shares, the particles move from the step's start");
+  }
   if (std::abs(grid.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
     throw Error(fmt::format("DPD/MPM grid: the cell size {:g} Å is not the grid's spacing {:g} Å",
                             settings.cell_size, grid.cell_size()));
@@ -103,6 +108,7 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
   materials.push_back(std::make_unique<grid::StresslessParticle>());
   grid::SolverOptions opt;
   opt.flip = settings.flip;
+  opt.move = settings.move;
   opt.units = grid::UnitSystem::metal();
   opt.point_noun = "DPD particle";
   // MPM's small-mass floor drops the momentum of the nodes it skips (the

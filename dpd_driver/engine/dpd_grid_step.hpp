@@ -7,7 +7,10 @@
 // pair forces go to the nodes with the shape functions, the forces where
 // an MPM point's stress divergence would go (s-3b); the nodal momentum
 // update gives nodal accelerations and velocities; each particle takes the
-// FLIP/PIC velocity update and moves with the grid velocity (s-6 to s-9).
+// FLIP/PIC velocity update and moves with the grid velocity (s-6 to s-9):
+// the updated nodal velocity at the step's start, or (settings.move, on
+// the engine's own grid) the new momentum's grid velocity at the move's
+// midpoint, which keeps a crystal's energy where particles share nodes.
 // The grid pass is the MPM solver's own phased step, with the particles
 // as StresslessParticle points: a concurrent run treats DPD particles and
 // MPM points alike. As the cell edge shrinks the model tends to DPD-only.
@@ -60,6 +63,10 @@ struct DpdGridSettings {
     bool free_body = false;
   };
   std::vector<RigidGroup> rigid;
+  // Where the particles take the grid velocity they move with
+  // (grid::PointMove). kMidpoint only on the engine's own grid: a shared
+  // grid's sums need the other program's part.
+  grid::PointMove move = grid::PointMove::kStepStart;
 };
 
 class DpdGridStep {

@@ -41,6 +41,7 @@ std::unique_ptr<DpdGridStep> make_grid_step(DpdEngine& engine, const DpdStagePar
   DpdGridSettings s;
   s.cell_size = grid.cell_size;
   s.flip = grid.flip;
+  s.move = grid.midpoint_move ? grid::PointMove::kMidpoint : grid::PointMove::kStepStart;
   for (const auto& m : motions) s.rigid.push_back({m.mask, m.velocity, m.free_body});
   try {
     return std::make_unique<DpdGridStep>(engine, s);

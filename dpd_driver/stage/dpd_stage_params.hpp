@@ -87,6 +87,7 @@ struct DpdStageParams {
   struct Grid {
     double cell_size = 0.0;
     double flip = 1.0;
+    bool midpoint_move = true;  // grid.move: midpoint, or step_start
   };
   std::optional<Grid> grid;
   double time_step = 0.0;

@@ -1183,13 +1183,84 @@ void MpmSolver::update_stress_and_move(MaterialPoints& points, const BoundaryCon
   impose_rigid(bc, remap_velocity_);
   for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;
   if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
+  if (opt_.move == PointMove::kMidpoint) {
+    // The stress is updated at the start; the move is made in
+    // move_from_midpoints, its first half with the remapped velocity, so
+    // that the midpoint is where the points' new momentum carries them.
+    start_positions_ = points.x;
+    pack_kinematics(remap_velocity_, remap_velocity_);
+    with_eval([&](const auto& eval) {
+      stress_and_move(eval, points, bc, dt, 0.0);
+      move_from_midpoints(eval, points, bc, dt);
+    });
+    return;
+  }
   pack_kinematics(remap_velocity_, velocity_);
-  with_eval([&](const auto& eval) { stress_and_move(eval, points, bc, dt); });
+  with_eval([&](const auto& eval) { stress_and_move(eval, points, bc, dt, dt); });
+}
+
+template <class Eval>
+void MpmSolver::move_from_midpoints(const Eval& eval, MaterialPoints& points,
+                                    const BoundaryConditions& bc, double dt) {
+  const size_t n = points.size();
+  const bool prescribed = !bc.point_velocities.empty();
+  // The weights at a midpoint are those of the cell it stands in. One that
+  // stands past this rank's box (its point crosses into another rank's
+  // cells this step, and migrates before the next) takes them at the box's
+  // face: the one place where ranks change more than round-off (1e-5 Å in
+  // 250 steps of tests/integration/configs/dpd_grid_ranks.yaml on 4 ranks).
+  // Weights extended from the start cell instead would keep ranks exact,
+  // but a crystal whose particles sit on nodes then gained 2.4 eV in 10 ps.
+  const auto& lo = local_.origin();
+  const auto& hi = local_.upper();
+  const auto midpoint = [&](size_t p) {
+    Vec3 x = points.x[p];
+    for (size_t a = 0; a < 3; ++a) x[a] = std::clamp(x[a], lo[a], hi[a]);
+    return eval(x);
+  };
+  // The first half of the move, with the remapped velocity at the start.
+  for (size_t p = 0; p < n; ++p) {
+    const auto& s = eval(start_positions_[p]);
+    Vec3 vel{0.0, 0.0, 0.0};
+    for (int q = 0; q < s.count; ++q) {
+      const auto qq = static_cast<size_t>(q);
+      add_scaled(vel, s.N[qq], remap_velocity_[static_cast<size_t>(s.node[qq])]);
+    }
+    if (prescribed) hold_prescribed(points, bc, p, vel);
+    move_point(points, p, vel, 0.5 * dt);
+  }
+  const Lanes8 keep_all_but_mass_and_momentum = {0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
+  for (auto& r : sums_) r.lanes *= keep_all_but_mass_and_momentum;
+  for (size_t p = 0; p < n; ++p) {
+    const auto& s = midpoint(p);
+    const double m = points.mass[p];
+    const Vec3& v = points.v[p];
+    const Lanes8 pm = {m, m * v[0], m * v[1], m * v[2], 0.0, 0.0, 0.0, 0.0};
+    for (int q = 0; q < s.count; ++q) {
+      const auto qq = static_cast<size_t>(q);
+      sums_[static_cast<size_t>(s.node[qq])].lanes += s.N[qq] * pm;
+    }
+  }
+  sum_shared(sums::kMass, 4);
+  nodal_velocities(bc, remap_velocity_);
+  impose_rigid(bc, remap_velocity_);
+  for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;
+  for (size_t p = 0; p < n; ++p) {
+    const auto& s = midpoint(p);
+    Vec3 vel{0.0, 0.0, 0.0};
+    for (int q = 0; q < s.count; ++q) {
+      const auto qq = static_cast<size_t>(q);
+      add_scaled(vel, s.N[qq], remap_velocity_[static_cast<size_t>(s.node[qq])]);
+    }
+    if (prescribed) hold_prescribed(points, bc, p, vel);
+    points.x[p] = start_positions_[p];
+    move_point(points, p, vel, dt);
+  }
 }
 
 template <class Eval>
 void MpmSolver::stress_and_move(const Eval& eval, MaterialPoints& points,
-                                const BoundaryConditions& bc, double dt) {
+                                const BoundaryConditions& bc, double dt, double move_dt) {
   const size_t n = points.size();
   const bool prescribed = !bc.point_velocities.empty();
   constexpr size_t kBlock = MaterialBlock::kSize;
@@ -1214,7 +1285,7 @@ void MpmSolver::stress_and_move(const Eval& eval, MaterialPoints& points,
     update_stress_block(points, p0, m, block, dt);
     for (size_t i = 0; i < m; ++i) {
       if (prescribed) hold_prescribed(points, bc, p0 + i, vb[i]);
-      move_point(points, p0 + i, vb[i], dt);
+      move_point(points, p0 + i, vb[i], move_dt);
     }
   }
 }

@@ -100,7 +100,7 @@ template <int W>
   // The 3 W doubles, W at a time.
   const Lanes<W> a = load_lanes<W>(v[0].data());
   const Lanes<W> b = load_lanes<W>(v[0].data() + W);
-  const Lanes<W> e = load_lanes<W>(v[0].data() + 2 * W);
+  const Lanes<W> e = load_lanes<W>(v[0].data() + std::ptrdiff_t{2} * W);
   if constexpr (W == 2) {
     // a = x0 y0, b = z0 x1, e = y1 z1.
     c[0] = __builtin_shufflevector(a, b, 0, 3);
@@ -154,7 +154,7 @@ template <int W>
   }
   store_lanes<W>(v[0].data(), a);
   store_lanes<W>(v[0].data() + W, b);
-  store_lanes<W>(v[0].data() + 2 * W, e);
+  store_lanes<W>(v[0].data() + std::ptrdiff_t{2} * W, e);
 }
 
 // W eight-double records (Lanes8, one per item) as eight lane vectors, one
