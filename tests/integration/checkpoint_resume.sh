@@ -12,7 +12,8 @@ export PBMS_NO_PLOTS=1  # the runs here are checked by their numbers, not their 
 #    frame (one every 50 steps: the frames after step 800 that the killed
 #    run wrote are dropped and written again);
 #  - on 1 rank instead of 2 (a copy of the killed run), to the rank tests'
-#    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh);
+#    round-off: positions 1e-9 Å, velocities 1e-10 Å/ps (dpd_ranks.sh); the
+#    grid pull's midpoint move to dpd_grid_1_2_4_ranks' 1e-4 Å and 1e-2 Å/ps;
 # for a thermostatted pull with probes and a gauge on 2 ranks, a DPDE
 # crystal (shardlow_dpde), a rigid flyer's impact and the pull on the
 # DPD/MPM grid with its grips past a velocity ramp; and mpm_run (the
@@ -178,10 +179,10 @@ print(f"  killed during the write after step 900: the manifest lists {steps}")
 PYEOF
 }
 
-compare() {  # compare WHOLE RESUMED STAGE POSITION_TOL VELOCITY_TOL
-  "$PY" - "$PWD/runs/$1" "$PWD/runs/$2" "$3" "$4" "$5" <<'PYEOF'
+compare() {  # compare WHOLE RESUMED STAGE POSITION_TOL VELOCITY_TOL [SUMMARY_RELATIVE_TOL]
+  "$PY" - "$PWD/runs/$1" "$PWD/runs/$2" "$3" "$4" "$5" "${6:-1e-6}" <<'PYEOF'
 import sys, yaml, h5py, numpy as np
-a, b, stage, xtol, vtol = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5])
+a, b, stage, xtol, vtol, stol = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), float(sys.argv[6])
 timing = ("steps_per_second", "wall_s")
 bad = []
 sa = yaml.safe_load(open(f"{a}/summary.yaml"))["stages"][stage]["results"]
@@ -191,7 +192,7 @@ for k, v in sa.items():
     if k in timing:
         continue
     w = sb.get(k, {}).get("value")
-    same = w == v["value"] if exact else w is not None and abs(w - v["value"]) <= 1e-6 * max(1.0, abs(v["value"]))
+    same = w == v["value"] if exact else w is not None and abs(w - v["value"]) <= stol * max(1.0, abs(v["value"]))
     if not same:
         bad.append(f"summary {k}: {v['value']!r} whole, {w!r} resumed")
 if exact:
@@ -252,7 +253,15 @@ for spec in pull:pull dpde:dpde impact:impact gridpull:gridpull; do
   compare "${case}_whole" "${case}_killed" "$stage" 0 0 || fail "$case: resumed on 2 ranks, not bitwise"
   "$PBMS" run "${case}_one_rank.yaml" --resume --ranks dpd=1 > "${case}_one_rank.out" 2>&1 ||
     { cat "${case}_one_rank.out"; fail "$case: the resume on 1 rank"; }
-  compare "${case}_whole" "${case}_one_rank" "$stage" 1e-9 1e-10 ||
+  # The grid pull's midpoint move (dpd_run's default since 2026-12-07)
+  # changes more than round-off with the ranks: a particle whose midpoint
+  # stands past its rank's box takes its weights at the box's face. Its
+  # bounds are dpd_grid_1_2_4_ranks' for that move (measured here 5e-6 Å,
+  # 6.1e-5 Å/ps, summary 1.5e-6); the other cases keep round-off.
+  tolerances="1e-9 1e-10"
+  [ "$case" = gridpull ] && tolerances="1e-4 1e-2 1e-4"
+  # shellcheck disable=SC2086
+  compare "${case}_whole" "${case}_one_rank" "$stage" $tolerances ||
     fail "$case: resumed on 1 rank, beyond round-off"
 done
 fi
