@@ -1218,14 +1218,17 @@ void MpmSolver::move_from_midpoints(const Eval& eval, MaterialPoints& points,
     for (size_t a = 0; a < 3; ++a) x[a] = std::clamp(x[a], lo[a], hi[a]);
     return eval(x);
   };
-  // The first half of the move, with the remapped velocity at the start.
-  for (size_t p = 0; p < n; ++p) {
-    const auto& s = eval(start_positions_[p]);
+  const auto remapped_velocity = [&](const auto& s) {
     Vec3 vel{0.0, 0.0, 0.0};
     for (int q = 0; q < s.count; ++q) {
       const auto qq = static_cast<size_t>(q);
       add_scaled(vel, s.N[qq], remap_velocity_[static_cast<size_t>(s.node[qq])]);
     }
+    return vel;
+  };
+  // The first half of the move, with the remapped velocity at the start.
+  for (size_t p = 0; p < n; ++p) {
+    Vec3 vel = remapped_velocity(eval(start_positions_[p]));
     if (prescribed) hold_prescribed(points, bc, p, vel);
     move_point(points, p, vel, 0.5 * dt);
   }
@@ -1245,13 +1248,9 @@ void MpmSolver::move_from_midpoints(const Eval& eval, MaterialPoints& points,
   nodal_velocities(bc, remap_velocity_);
   impose_rigid(bc, remap_velocity_);
   for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;
+  // The move from the start, with the remapped velocity at the midpoint.
   for (size_t p = 0; p < n; ++p) {
-    const auto& s = midpoint(p);
-    Vec3 vel{0.0, 0.0, 0.0};
-    for (int q = 0; q < s.count; ++q) {
-      const auto qq = static_cast<size_t>(q);
-      add_scaled(vel, s.N[qq], remap_velocity_[static_cast<size_t>(s.node[qq])]);
-    }
+    Vec3 vel = remapped_velocity(midpoint(p));
     if (prescribed) hold_prescribed(points, bc, p, vel);
     points.x[p] = start_positions_[p];
     move_point(points, p, vel, dt);
