@@ -342,6 +342,23 @@ void check_gas_ramp(const config::StageCheck& c) {
                     "gas.heat_bath_time > 0, or leave ramp_time out");
 }
 
+// Frictionless contact gives the MPM program's points a velocity of their
+// own: an MPM region of the body would come apart from its DPD region.
+void check_gas_contact(const config::StageCheck& c) {
+  const YAML::Node g = c.resolved["gas"];
+  if (!g || g["contact"].as<std::string>() != "frictionless") return;
+  const YAML::Node regions = c.resolved["regions"];
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    if (regions[i]["solver"].as<std::string>() != "mpm") continue;
+    c.validator.error(c.raw["gas"]["contact"], c.path + ".gas.contact",
+                      fmt::format("frictionless contact needs the body all DPD: region '{}' is "
+                                  "MPM, and its points would slide on the DPD part as the gas "
+                                  "does (use shared_velocity)",
+                                  regions[i]["name"].Scalar()));
+    return;
+  }
+}
+
 void check_concurrent_stage(const config::StageCheck& c) {
   check_regions(c);
   check_grid(c);
@@ -353,6 +370,7 @@ void check_concurrent_stage(const config::StageCheck& c) {
   check_fit_window(c);
   check_ghost_forces(c);
   check_gas_ramp(c);
+  check_gas_contact(c);
 }
 
 }  // namespace pbms::coupling

@@ -39,6 +39,8 @@ GasParams gas_from_yaml(const YAML::Node& g, const YAML::Node& box) {
   gas.probe_distance = g["probe_distance"].as<double>();
   gas.settle_time = g["settle_time"].as<double>();
   gas.walls = g["walls"].as<bool>();
+  gas.fields = g["contact"].as<std::string>() == "frictionless" ? GridFields::kFrictionlessContact
+                                                                : GridFields::kShared;
   return gas;
 }
 

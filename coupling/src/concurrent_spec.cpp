@@ -195,7 +195,16 @@ Param gas() {
        Param::boolean("walls",
                       "The box's non-periodic faces are walls: the grid nodes on "
                       "them keep no normal velocity")
-           .def(true)},
+           .def(true),
+       Param::choice("contact", {"shared_velocity", "frictionless"},
+                     "How the gas and the body move at a node both reach. shared_velocity: "
+                     "one velocity, their nodal sums added, so that a gas point among the "
+                     "body's nodes moves with the body (gas caught between two bodies "
+                     "stays there). frictionless: each its own velocity, taking a common "
+                     "one along the surface normal only where they approach (Bardenhagen "
+                     "et al. 2000), so that the gas slides along the body and out of a "
+                     "closing gap. frictionless needs the body all DPD (no MPM region)")
+           .def(std::string("shared_velocity"))},
       "Ideal-gas MPM points (P = (γ − 1) ρ e, seed eq. 6.1) filling the box outside the body, "
       "advanced by mpm_driver");
 }

@@ -7,19 +7,30 @@
 namespace pbms::coupling {
 
 CouplingScheme::CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link,
-                               InterfaceTreatment treatment)
-    : sides_(std::move(sides)), link_(link), treatment_(treatment) {}
+                               InterfaceTreatment treatment, GridFields fields)
+    : sides_(std::move(sides)), link_(link), treatment_(treatment), fields_(fields) {}
 
 void CouplingScheme::step() {
   if (treatment_ != InterfaceTreatment::kNone) link_.share_partners();
   for (GridSide* s : sides_) s->compute_forces();
   if (treatment_ == InterfaceTreatment::kMomentumConserving) link_.return_reactions();
   for (GridSide* s : sides_) s->map_to_grid();
-  link_.sum_nodes(grid::sums::kMass, grid::sums::kStride);  // mass, momentum, force, holds
+  const bool contact = fields_ == GridFields::kFrictionlessContact;
+  if (contact) {
+    // Each side keeps its own field and sees the other's; only the holds add.
+    link_.exchange_nodes(grid::sums::kMass, grid::sums::kHeldAxes, true);
+    link_.sum_nodes(grid::sums::kHeldAxes, 1);
+  } else {
+    link_.sum_nodes(grid::sums::kMass, grid::sums::kStride);  // mass, momentum, force, holds
+  }
   for (GridSide* s : sides_) s->update_nodes();
   link_.sum_holds();
   for (GridSide* s : sides_) s->map_back();
-  link_.sum_nodes(grid::sums::kMomentum, grid::sums::kVector);  // the remapped momentum
+  if (contact) {
+    link_.exchange_nodes(grid::sums::kMomentum, grid::sums::kVector, false);
+  } else {
+    link_.sum_nodes(grid::sums::kMomentum, grid::sums::kVector);  // the remapped momentum
+  }
   for (GridSide* s : sides_) s->finish_step();
 }
 

@@ -79,6 +79,15 @@ void CrossProgramLink::sum_nodes(int first, int count) {
   sum_.sum(r.data + first, count, r.stride);
 }
 
+void CrossProgramLink::exchange_nodes(int first, int count, bool gradients) {
+  const NodalRecords r = side_.nodal_records();
+  const GridSide::ContactRecords c = side_.contact_records();
+  sum_.copy_across(r.data + first, c.other_sums.data + first, count, r.stride);
+  if (gradients) {
+    sum_.copy_across(c.gradient.data, c.other_gradient.data, c.gradient.stride, c.gradient.stride);
+  }
+}
+
 void CrossProgramLink::sum_holds() {
   const NodalRecords n = side_.nodal_records();
   const auto stride = static_cast<std::size_t>(n.stride);

@@ -65,6 +65,16 @@ void InProcessLink::sum_nodes(int first, int count) {
   sum_records(particles_.nodal_records(), continuum_.nodal_records(), first, count);
 }
 
+void InProcessLink::exchange_nodes(int first, int count, bool gradients) {
+  const GridSide::ContactRecords a = particles_.contact_records();
+  const GridSide::ContactRecords b = continuum_.contact_records();
+  copy_records(particles_.nodal_records(), b.other_sums, first, count);
+  copy_records(continuum_.nodal_records(), a.other_sums, first, count);
+  if (!gradients) return;
+  copy_records(a.gradient, b.other_gradient, 0, a.gradient.stride);
+  copy_records(b.gradient, a.other_gradient, 0, b.gradient.stride);
+}
+
 void InProcessLink::sum_holds() {
   const NodalRecords a = particles_.held_nodes();
   sum_records(a, continuum_.held_nodes(), 0, a.stride);
@@ -78,6 +88,22 @@ void InProcessLink::sum_records(const NodalRecords& a, const NodalRecords& b, in
     double* ra = a.data + static_cast<std::size_t>(a.nodes.local_index(ijk)) * stride_a;
     double* rb = b.data + static_cast<std::size_t>(b.nodes.local_index(ijk)) * stride_b;
     for (int c = first; c < first + count; ++c) ra[c] = rb[c] = ra[c] + rb[c];
+  });
+}
+
+void InProcessLink::copy_records(const NodalRecords& from, const NodalRecords& to, int first,
+                                 int count) {
+  const auto stride_from = static_cast<std::size_t>(from.stride);
+  const auto stride_to = static_cast<std::size_t>(to.stride);
+  const auto n = static_cast<std::size_t>(to.nodes.count());
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int c = first; c < first + count; ++c) to.data[k * stride_to + c] = 0.0;
+  }
+  grid::for_each_node(from.nodes.intersected(to.nodes), [&](const std::array<int, 3>& ijk) {
+    const double* f =
+        from.data + static_cast<std::size_t>(from.nodes.local_index(ijk)) * stride_from;
+    double* t = to.data + static_cast<std::size_t>(to.nodes.local_index(ijk)) * stride_to;
+    for (int c = first; c < first + count; ++c) t[c] = f[c];
   });
 }
 

@@ -36,9 +36,22 @@ NodalSumAcrossPrograms::NodalSumAcrossPrograms(MPI_Comm inter, const grid::GridP
   recv_buf_.resize(recv_peers_.size());
 }
 
+void NodalSumAcrossPrograms::sum(double* data, int components, int stride) {
+  transfer(data, data, components, stride);
+}
+
+void NodalSumAcrossPrograms::copy_across(const double* from, double* to, int components,
+                                         int stride) {
+  const auto n = static_cast<size_t>(local_.count());
+  for (size_t k = 0; k < n; ++k) {
+    for (int c = 0; c < components; ++c) to[k * static_cast<size_t>(stride) + c] = 0.0;
+  }
+  transfer(from, to, components, stride);
+}
+
 // One message per peer and direction: a peer's blocks (one per periodic
 // image) travel packed together.
-void NodalSumAcrossPrograms::sum(double* data, int components, int stride) {
+void NodalSumAcrossPrograms::transfer(const double* from, double* to, int components, int stride) {
   const double start = MPI_Wtime();
   const auto nc = static_cast<size_t>(components);
   const auto ns = static_cast<size_t>(stride);
@@ -62,7 +75,7 @@ void NodalSumAcrossPrograms::sum(double* data, int components, int stride) {
       const NodeTransfer& t = sends_[b];
       grid::for_each_node(t.nodes, [&](std::array<int, 3> ijk) {
         for (size_t a = 0; a < 3; ++a) ijk[a] -= t.shift[a] * cells_[a];
-        const double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
+        const double* d = from + static_cast<size_t>(local_.local_index(ijk)) * ns;
         buf.insert(buf.end(), d, d + nc);
       });
     }
@@ -80,7 +93,7 @@ void NodalSumAcrossPrograms::sum(double* data, int components, int stride) {
     const double* in = recv_buf_[r].data();
     for (size_t b = recv_peers_[r].begin; b < recv_peers_[r].end; ++b) {
       grid::for_each_node(receives_[b].nodes, [&](const std::array<int, 3>& ijk) {
-        double* d = data + static_cast<size_t>(local_.local_index(ijk)) * ns;
+        double* d = to + static_cast<size_t>(local_.local_index(ijk)) * ns;
         for (size_t c = 0; c < nc; ++c) d[c] += *in++;
       });
     }

@@ -19,6 +19,9 @@ class ConcurrentDpdSide : public coupling::ParticleSide {
   void compute_forces() override { grid_.compute_forces(); }
   void map_to_grid() override { grid_.map_to_grid(); }
   [[nodiscard]] coupling::NodalRecords nodal_records() override;
+  [[nodiscard]] ContactRecords contact_records() override {
+    return coupling::contact_records_of(grid_.contact_fields());
+  }
   void update_nodes() override;
   [[nodiscard]] coupling::NodalRecords held_nodes() override;
   void map_back() override;

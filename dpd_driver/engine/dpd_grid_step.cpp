@@ -109,6 +109,7 @@ void DpdGridStep::init(const grid::RegularGrid& grid, const std::array<bool, 3>&
   grid::SolverOptions opt;
   opt.flip = settings.flip;
   opt.move = settings.move;
+  if (settings.contact) opt.contact = grid::ContactField::kSurfaceFromOtherMass;
   opt.units = grid::UnitSystem::metal();
   opt.point_noun = "DPD particle";
   // MPM's small-mass floor drops the momentum of the nodes it skips (the

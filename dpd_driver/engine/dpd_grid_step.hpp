@@ -67,6 +67,9 @@ struct DpdGridSettings {
   // (grid::PointMove). kMidpoint only on the engine's own grid: a shared
   // grid's sums need the other program's part.
   grid::PointMove move = grid::PointMove::kStepStart;
+  // The particles are one field of a frictionless contact with another
+  // program's points, whose mass gives the surface (grid::ContactField).
+  bool contact = false;
 };
 
 class DpdGridStep {
@@ -122,6 +125,9 @@ class DpdGridStep {
   // Nodal records (MpmSolver::nodal_sums) between map_to_grid and
   // update_nodes, and the remapped momentum after map_back.
   [[nodiscard]] grid::MpmSolver::NodalSums nodal_sums() { return solver_->nodal_sums(); }
+  [[nodiscard]] grid::MpmSolver::ContactFields contact_fields() {
+    return solver_->contact_fields();
+  }
 
   // Between update_nodes and map_back: the nodes the rigid groups hold
   // (MpmSolver::held_nodes), and holding those another program holds.

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "pbms/error.hpp"
+#include "pbms/grid/frictionless_contact.hpp"
 #include "pbms/grid/shape_function_linear.hpp"
 #include "pbms/simd/lane_transpose.hpp"
 #include "pbms/units.hpp"
@@ -119,6 +120,14 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<ShapeFunction> shape,
   acceleration_.assign(n, {0.0, 0.0, 0.0});
   remap_velocity_.assign(n, {0.0, 0.0, 0.0});
   node_force_.assign(n, {0.0, 0.0, 0.0});
+  if (opt_.contact != ContactField::kNone) {
+    if (opt_.stress_update != StressUpdate::kLast || opt_.move != PointMove::kStepStart) {
+      throw Error("a contact field takes update-stress-last and the step-start move");
+    }
+    mass_gradient_.assign(3 * n, 0.0);
+    other_gradient_.assign(3 * n, 0.0);
+    other_sums_.assign(sums::kStride * n, 0.0);
+  }
   // A node is counted by one rank only: the one whose cells have it as a
   // lower corner, or the last box on a non-periodic upper face.
   unique_node_.assign(n, 0);
@@ -856,7 +865,10 @@ void MpmSolver::begin_step(const MaterialPoints& points) {
 void MpmSolver::map_to_grid(MaterialPoints& points, const BoundaryConditions& bc, double dt) {
   enter(Phase::kMapToGrid);
   if (opt_.stress_update == StressUpdate::kLast) {
-    with_eval([&](const auto& eval) { scatter(eval, points, bc, true); });  // s-1 to s-4
+    with_eval([&](const auto& eval) {
+      scatter(eval, points, bc, true);  // s-1 to s-4
+      if (opt_.contact == ContactField::kSurfaceFromOwnMass) map_mass_gradient(eval, points);
+    });
     return;
   }
   // Update-stress-first: the gradient of the mapped velocity updates the
@@ -891,6 +903,9 @@ void MpmSolver::map_to_grid(MaterialPoints& points, const BoundaryConditions& bc
 void MpmSolver::complete_nodal_sums() {
   enter(Phase::kCompleteNodalSums);
   sum_shared(sums::kMass, 7);
+  if (opt_.contact == ContactField::kSurfaceFromOwnMass && patch_.sum_shared) {
+    patch_.sum_shared(mass_gradient_.data(), 3, 3);
+  }
   if (opt_.ddmp) add_dual_force();
   sum_rigid();
 }
@@ -899,11 +914,83 @@ MpmSolver::NodalSums MpmSolver::nodal_sums() {
   return {reinterpret_cast<double*>(sums_.data()), sums::kStride, patch_.nodes};
 }
 
+MpmSolver::ContactFields MpmSolver::contact_fields() {
+  if (opt_.contact == ContactField::kNone)
+    throw Error("this grid step keeps no contact fields (SolverOptions::contact)");
+  return {{mass_gradient_.data(), 3, patch_.nodes},
+          {other_sums_.data(), sums::kStride, patch_.nodes},
+          {other_gradient_.data(), 3, patch_.nodes}};
+}
+
+// Σ_p m_p ∇N_i(x_p) points from the points to node i; its negative is the
+// gradient at the node of the mass the points spread, which points into
+// their material (the normal frictionless_contact.hpp takes).
+template <class Eval>
+void MpmSolver::map_mass_gradient(const Eval& eval, const MaterialPoints& points) {
+  std::fill(mass_gradient_.begin(), mass_gradient_.end(), 0.0);
+  for (size_t p = 0; p < points.size(); ++p) {
+    const auto& s = locate(eval, points, p);
+    for (int q = 0; q < s.count; ++q) {
+      double* g = &mass_gradient_[3 * static_cast<size_t>(s.node[static_cast<size_t>(q)])];
+      const auto dN = grad(s, q);
+      for (size_t a = 0; a < 3; ++a) g[a] -= points.mass[p] * dN[a];
+    }
+  }
+}
+
+namespace {
+
+ContactVec at3(const double* d) {
+  return {d[0], d[1], d[2]};
+}
+
+}  // namespace
+
+Vec3 MpmSolver::contact_normal_at(size_t i) const {
+  const ContactVec none{0.0, 0.0, 0.0};
+  if (opt_.contact == ContactField::kSurfaceFromOwnMass) {
+    return contact_normal(at3(&mass_gradient_[3 * i]), none);
+  }
+  return contact_normal(none, at3(&other_gradient_[3 * i]));
+}
+
+Vec3 MpmSolver::contact_impulse_at(size_t i, double advance) const {
+  const Lanes8& r = sums_[i].lanes;
+  const double* o = &other_sums_[i * sums::kStride];
+  const double m = r[sums::kMass], mo = o[sums::kMass];
+  if (!(m > 0.0) || !(mo > 0.0)) return {0.0, 0.0, 0.0};
+  ContactVec p{}, po{};
+  for (size_t a = 0; a < 3; ++a) {
+    p[a] = r[sums::kMomentum + a] + advance * r[sums::kForce + a];
+    po[a] = o[sums::kMomentum + a] + advance * o[sums::kForce + a];
+  }
+  return frictionless_contact_impulse(m, p, mo, po, contact_normal_at(i));
+}
+
+// Each field's momentum after the step's forces meets the other's; the
+// impulse goes on the force, so that the update and the FLIP acceleration
+// both see it.
+void MpmSolver::contact_on_forces(double dt) {
+  const double dt_kf = dt * opt_.units.force_per_mass_to_accel;
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    const ContactVec j = contact_impulse_at(i, dt_kf);
+    for (size_t a = 0; a < 3; ++a) sums_[i].lanes[sums::kForce + a] += j[a] / dt_kf;
+  }
+}
+
+void MpmSolver::contact_on_remap() {
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    const ContactVec j = contact_impulse_at(i, 0.0);
+    for (size_t a = 0; a < 3; ++a) sums_[i].lanes[sums::kMomentum + a] += j[a];
+  }
+}
+
 // Nodal momentum update (s-5, s-6). Constrained components are imposed on
 // the new velocity, and the acceleration is taken from the constrained
 // change, so that FLIP and PIC both honour the constraint.
 void MpmSolver::update_nodes(const BoundaryConditions& bc, double dt) {
   enter(Phase::kUpdateNodes);
+  if (opt_.contact != ContactField::kNone) contact_on_forces(dt);
   const double kf = opt_.units.force_per_mass_to_accel;
   for (size_t i = 0; i < sums_.size(); ++i) {
     const Lanes8& r = sums_[i].lanes;
@@ -1083,7 +1170,8 @@ void MpmSolver::own_material_fields(const Eval& eval, MaterialPoints& points, do
       if (!(f[0] > 0.0)) continue;
       for (size_t a = 0; a < 3; ++a) v[a] += N / f[0] * f[1 + a];
       if (!opt_.density_from_grid(points.material[p])) continue;
-      const double filled = std::max(0.0, sums_[i].lanes[sums::kMass] - f[0]) / opt_.filler_density;
+      const double rest = sums_[i].lanes[sums::kMass] - f[0] + other_mass(i);
+      const double filled = std::max(0.0, rest) / opt_.filler_density;
       mass += N * f[0];
       free_volume += N * std::max(0.0, nodal_volume(i) - filled);
     }
@@ -1179,6 +1267,7 @@ void MpmSolver::update_stress_and_move(MaterialPoints& points, const BoundaryCon
                                        double dt) {
   enter(Phase::kUpdateStress);
   if (opt_.stress_update != StressUpdate::kLast) return;
+  if (opt_.contact != ContactField::kNone) contact_on_remap();
   nodal_velocities(bc, remap_velocity_);  // s-11
   impose_rigid(bc, remap_velocity_);
   for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;

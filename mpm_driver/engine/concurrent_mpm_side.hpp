@@ -25,6 +25,9 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   void compute_forces() override {}
   void map_to_grid() override;
   [[nodiscard]] coupling::NodalRecords nodal_records() override;
+  [[nodiscard]] ContactRecords contact_records() override {
+    return coupling::contact_records_of(engine_.solver().contact_fields());
+  }
   void update_nodes() override;
   [[nodiscard]] coupling::NodalRecords held_nodes() override;
   void map_back() override;

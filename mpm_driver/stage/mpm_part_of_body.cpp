@@ -55,6 +55,9 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
   m.options.small_mass_fraction = 0.0;
   m.options.ddmp = cp.ddmp;
   m.options.ddmp_face_vanishing = cp.ddmp;
+  if (cp.fields() == coupling::GridFields::kFrictionlessContact) {
+    m.options.contact = grid::ContactField::kSurfaceFromOwnMass;  // the gas's
+  }
   const double a = lattice_constant_;
   const double site_volume = a * a * a / 4.0;  // one fcc site
   const double site_density = cp.particle_mass / site_volume;

@@ -2,7 +2,9 @@
 // finished run (its resolved config.yaml), built as dpd_driver and
 // mpm_driver build their parts (DpdPartOfBody, MpmPartOfBody), but both in
 // this one process, joined by an InProcessLink, with no band and no reach
-// to leave anything out. Advances the stage's steps and writes every
+// to leave anything out; an initial.from_stage comes from the run
+// directory, and the stage loops' thermostat and gas heat bath act after
+// each step as there. Advances the stage's steps and writes every
 // particle's and point's id, position and velocity, one per line, at full
 // precision, for tests/integration/concurrent_split_drivers.sh to compare
 // with what the two drivers wrote.
@@ -20,6 +22,7 @@
 
 #include "pbms/coupling/coupling_scheme.hpp"
 #include "pbms/coupling/in_process_link.hpp"
+#include "stage/dpd_model.hpp"
 #include "stage/dpd_part_of_body.hpp"
 #include "stage/mpm_part_of_body.hpp"
 
@@ -45,11 +48,15 @@ std::map<std::int64_t, Row> advance(const YAML::Node& config, const std::string&
   const pbms::coupling::ConcurrentParams& cp = dpd.params();
   pbms::mpm::MpmPartOfBody mpm(MPI_COMM_SELF, cp, dpd.handover());
   pbms::coupling::InProcessLink link(dpd.side(), mpm.side());
-  pbms::coupling::CouplingScheme scheme({&dpd.side(), &mpm.side()}, link, cp.interface);
+  pbms::coupling::CouplingScheme scheme({&dpd.side(), &mpm.side()}, link, cp.interface,
+                                        cp.fields());
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     dpd.ramp_grips(n);
     mpm.ramp_grips(n);
     scheme.step();
+    // What the drivers' stage loops add after each step.
+    if (cp.thermostat) dpd.engine().berendsen(cp.thermostat->first, cp.thermostat->second, true);
+    mpm.hold_gas_temperature(n);
   }
 
   std::map<std::int64_t, Row> out;
@@ -75,6 +82,7 @@ int main(int argc, char** argv) {
   int rc = 0;
   try {
     const YAML::Node config = YAML::LoadFile(std::string(argv[1]) + "/config.yaml");
+    pbms::dpd::use_run_directory(argv[1]);  // an initial.from_stage's state
     const auto rows = advance(config, argv[2]);
     std::FILE* f = std::fopen(argv[3], "w");
     if (f == nullptr) throw std::runtime_error(fmt::format("cannot write {}", argv[3]));

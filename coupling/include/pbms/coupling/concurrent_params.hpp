@@ -64,15 +64,16 @@ struct GasParams {
   double density = 0.0;     // g/mol/Å³
   double pressure = 0.0;    // bar: the target
   double gamma = 1.4;
-  double flip = 0.95;             // the gas points' own FLIP/PIC blend
-  bool density_from_grid = true;  // else integrated along each point's path
-  double density_time = 2.0;      // ps: the points' density relaxes to the grid's over it
-  double heat_bath_time = 1.0;    // ps: e relaxes to its start over it; 0: adiabatic
-  double ramp_time = 0.0;         // ps: the heat bath's target rises from 0 over it
-  double clearance = 0.0;         // sites nearer a body particle stay empty
-  double probe_distance = 0.0;    // the pressure is measured this far from the body
-  double settle_time = 0.0;       // ps: gas_pressure averages the samples from here on
-  bool walls = true;              // the non-periodic faces hold no normal velocity
+  double flip = 0.95;                       // the gas points' own FLIP/PIC blend
+  bool density_from_grid = true;            // else integrated along each point's path
+  double density_time = 2.0;                // ps: the points' density relaxes to the grid's over it
+  double heat_bath_time = 1.0;              // ps: e relaxes to its start over it; 0: adiabatic
+  double ramp_time = 0.0;                   // ps: the heat bath's target rises from 0 over it
+  double clearance = 0.0;                   // sites nearer a body particle stay empty
+  double probe_distance = 0.0;              // the pressure is measured this far from the body
+  double settle_time = 0.0;                 // ps: gas_pressure averages the samples from here on
+  bool walls = true;                        // the non-periodic faces hold no normal velocity
+  GridFields fields = GridFields::kShared;  // how gas and body move at shared nodes
 
   [[nodiscard]] double point_volume() const { return spacing * spacing * spacing; }
   [[nodiscard]] double point_mass() const { return density * point_volume(); }
@@ -132,6 +133,7 @@ struct ConcurrentParams {
   std::optional<std::pair<std::string, std::string>> opening;  // dpd plane, mpm plane
   std::optional<TensionProbe> tension;
   std::optional<GasParams> gas;
+  [[nodiscard]] GridFields fields() const { return gas ? gas->fields : GridFields::kShared; }
   // Berendsen rescaling of the DPD part about its mean velocity: K, ps.
   std::optional<std::pair<double, double>> thermostat;
   std::optional<VolumeProbe> volume;

@@ -17,6 +17,11 @@ class CouplingLink {
   // Lanes [first, first + count) of both sides' nodal records become their
   // sum on the nodes both hold.
   virtual void sum_nodes(int first, int count) = 0;
+  // GridFields::kFrictionlessContact: lanes [first, first + count) of each
+  // side's nodal records become the other side's other_sums (zero on the
+  // nodes it does not reach), and with `gradients` its mass gradient the
+  // other's other_gradient.
+  virtual void exchange_nodes(int first, int count, bool gradients) = 0;
   // Both sides' held_nodes records become their sum on the nodes both hold,
   // so that each holds what the other holds.
   virtual void sum_holds() = 0;

@@ -17,7 +17,8 @@ class CouplingScheme {
  public:
   // The sides this process runs (one or both) and the link between them;
   // all must outlive the scheme.
-  CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link, InterfaceTreatment treatment);
+  CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link, InterfaceTreatment treatment,
+                 GridFields fields = GridFields::kShared);
 
   // One step. Collective over both sides' ranks.
   void step();
@@ -36,6 +37,7 @@ class CouplingScheme {
   std::vector<GridSide*> sides_;
   CouplingLink& link_;
   InterfaceTreatment treatment_;
+  GridFields fields_;
 };
 
 }  // namespace pbms::coupling

@@ -30,6 +30,16 @@ enum class InterfaceTreatment {
   kMomentumConserving,
 };
 
+// How the two sides' materials move at a node both reach.
+enum class GridFields {
+  // One velocity: their nodal sums add (one body split in two regions).
+  kShared,
+  // Each side its own velocity, meeting by frictionless contact
+  // (grid/frictionless_contact.hpp): a gas that slides along a body it
+  // cannot enter.
+  kFrictionlessContact,
+};
+
 // A side's nodal records between its phases: per node of `nodes` (global
 // indices, i fastest), `stride` doubles in the grid step's lane layout
 // (grid::sums: mass, momentum, force, and the axes its rigid groups hold
@@ -69,6 +79,16 @@ class GridSide {
   virtual void map_back() = 0;
   // Nodal velocities, stresses, moves (s-11 to s-14); the step is done.
   virtual void finish_step() = 0;
+  // GridFields::kFrictionlessContact, after map_to_grid: this side's mass
+  // gradient (3 doubles per node of nodal_records()' nodes), and the
+  // buffers the link fills with the other side's sums (nodal_records'
+  // lanes) and mass gradient.
+  struct ContactRecords {
+    NodalRecords gradient;
+    NodalRecords other_sums;
+    NodalRecords other_gradient;
+  };
+  [[nodiscard]] virtual ContactRecords contact_records() = 0;
   // The ranks of this side's program.
   [[nodiscard]] virtual MPI_Comm comm() const = 0;
   // Whether the partners must be chosen afresh this step (this side moved
@@ -76,6 +96,14 @@ class GridSide {
   // kept lets the DPD side keep its neighbour list. Collective over comm().
   [[nodiscard]] virtual bool wants_new_partners() = 0;
 };
+
+// A grid step's contact fields as a side offers them.
+inline GridSide::ContactRecords contact_records_of(const grid::MpmSolver::ContactFields& f) {
+  const auto rec = [](const grid::MpmSolver::NodalSums& s) {
+    return NodalRecords{s.data, s.stride, s.nodes};
+  };
+  return {rec(f.gradient), rec(f.other_sums), rec(f.other_gradient)};
+}
 
 // The side whose particles take pair partners (DPD).
 class ParticleSide : public GridSide {

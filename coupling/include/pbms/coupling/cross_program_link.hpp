@@ -35,6 +35,7 @@ class CrossProgramLink : public CouplingLink {
   void share_partners() override;
   void return_reactions() override;
   void sum_nodes(int first, int count) override;
+  void exchange_nodes(int first, int count, bool gradients) override;
   // Only when a rigid group of either program holds a node of the band
   // (its held axes, summed with the nodal sums, say so alike in both
   // programs): otherwise nothing either holds reaches the other.

@@ -21,10 +21,14 @@ class InProcessLink : public CouplingLink {
   void share_partners() override;
   void return_reactions() override;
   void sum_nodes(int first, int count) override;
+  void exchange_nodes(int first, int count, bool gradients) override;
   void sum_holds() override;
 
  private:
   static void sum_records(const NodalRecords& a, const NodalRecords& b, int first, int count);
+  // Lanes [first, first + count) of `from` into `to` (laid out on its own
+  // nodes, zero where `from` has none).
+  static void copy_records(const NodalRecords& from, const NodalRecords& to, int first, int count);
   ParticleSide& particles_;
   ContinuumSide& continuum_;
   std::vector<GhostPoint> partners_;

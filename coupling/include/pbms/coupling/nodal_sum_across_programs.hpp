@@ -45,12 +45,20 @@ class NodalSumAcrossPrograms {
   // complete part; on return they are the sum over both programs. Both
   // programs call it together with the same `components`.
   void sum(double* data, int components, int stride);
+  // The other program's part alone: on return `to` (laid out as `data`)
+  // holds in its `components` from the first the other program's part on
+  // the nodes both hold, and zero elsewhere; `from` is this program's part,
+  // which the other program receives. Both programs call it together.
+  void copy_across(const double* from, double* to, int components, int stride);
 
   [[nodiscard]] const ExchangeProfile& profile() const { return profile_; }
   [[nodiscard]] const std::vector<NodeTransfer>& receives() const { return receives_; }
   [[nodiscard]] const std::vector<NodeTransfer>& sends() const { return sends_; }
 
  private:
+  // Sends `from`'s components and adds what arrives to `to`'s.
+  void transfer(const double* from, double* to, int components, int stride);
+
   MPI_Comm inter_;
   grid::NodeBox local_;
   std::array<int, 3> cells_{};

@@ -38,6 +38,19 @@ enum class StressUpdate { kLast, kFirst };
 // so a run whose nodes another program also sums cannot take it.
 enum class PointMove { kStepStart, kMidpoint };
 
+// SolverOptions::contact. The normal comes from one field's mass gradient,
+// the same on both sides: that of the field whose points fill space evenly.
+// A DPD body on cells of a_cg/2 holds half a particle per cell; its mass
+// gradient points at the nearest particle rather than out of its surface,
+// and through that noise a gas flooded two copper spheres (1,285 gas points
+// more than 5 Å inside them after 20 ps at 3 GPa) where the gas's lattice,
+// one point per cell, let none in.
+enum class ContactField {
+  kNone,
+  kSurfaceFromOwnMass,    // this field's mass gives the normal (the gas)
+  kSurfaceFromOtherMass,  // the other field's does (the body in a gas)
+};
+
 // Conversion factors between the stress, force and acceleration units of a
 // run: 1 for consistent units (the seed's 1-D bar), metal units otherwise.
 struct UnitSystem {
@@ -49,6 +62,14 @@ struct UnitSystem {
 struct SolverOptions {
   StressUpdate stress_update = StressUpdate::kLast;
   PointMove move = PointMove::kStepStart;
+  // Whether these points are one velocity field of a frictionless contact
+  // with another program's, which shares the grid's nodes without sharing
+  // their velocity (frictionless_contact.hpp: a gas around a body), and
+  // whose mass gives the surface normal. map_to_grid then also maps this
+  // field's mass gradient; the other field's records (contact_fields) must
+  // be filled before update_nodes, and its remapped momentum before
+  // update_stress_and_move. Update-stress-last and the step-start move only.
+  ContactField contact = ContactField::kNone;
   double flip = 1.0;  // 1: FLIP, 0: PIC
   // A material's own FLIP/PIC blend on top of `flip`, by material index (1,
   // the default, adds nothing): an inviscid gas at one point per cell needs some PIC, which
@@ -171,6 +192,17 @@ class MpmSolver {
     NodeBox nodes;
   };
   [[nodiscard]] NodalSums nodal_sums();
+
+  // SolverOptions::contact: this field's mass gradient (3 doubles per node,
+  // complete after complete_nodal_sums), and the other field's records as
+  // a link fills them: its sums (nodal_sums' lanes; zero where it has
+  // none) and its mass gradient, over patch().nodes.
+  struct ContactFields {
+    NodalSums gradient;
+    NodalSums other_sums;
+    NodalSums other_gradient;
+  };
+  [[nodiscard]] ContactFields contact_fields();
 
   // The largest stable time step over these points: h / max_p (c_p + |v_p|).
   [[nodiscard]] double stable_time_step(const MaterialPoints& points) const;
@@ -339,6 +371,22 @@ class MpmSolver {
   [[noreturn]] void point_off_grid(const std::string& noun, int64_t id, const Vec3& x,
                                    const Vec3& v, double dt) const;
   void sum_rigid();
+  // SolverOptions::contact: the mass gradient of this solver's points to
+  // mass_gradient_; the contact impulses on the nodal force (before the
+  // update) and on the remapped momentum (before the stress update).
+  template <class Eval>
+  void map_mass_gradient(const Eval& eval, const MaterialPoints& points);
+  [[nodiscard]] Vec3 contact_normal_at(size_t i) const;  // from this field into the other
+  // The impulse on this field at node i, both fields' momenta taken
+  // `advance` times their forces on (0: as they are); zero where either
+  // leaves the node empty.
+  [[nodiscard]] Vec3 contact_impulse_at(size_t i, double advance) const;
+  void contact_on_forces(double dt);
+  void contact_on_remap();
+  // The other field's mass at node i (0 without contact).
+  [[nodiscard]] double other_mass(size_t i) const {
+    return other_sums_.empty() ? 0.0 : other_sums_[i * sums::kStride + sums::kMass];
+  }
   void impose_rigid(const BoundaryConditions& bc, std::vector<Vec3>& v) const;
   void hold_prescribed(const MaterialPoints& points, const BoundaryConditions& bc, size_t p,
                        Vec3& vel) const;
@@ -360,6 +408,8 @@ class MpmSolver {
   std::vector<NodeLanes> kin_;
   std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
   std::vector<Vec3> start_positions_;  // PointMove::kMidpoint: where the move starts
+  // SolverOptions::contact (contact_fields): per node.
+  std::vector<double> mass_gradient_, other_sums_, other_gradient_;
   // Nodes another program holds this step (hold_nodes_of_others): local
   // index, axis and velocity.
   struct OtherHold {
