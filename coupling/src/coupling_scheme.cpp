@@ -17,8 +17,9 @@ void CouplingScheme::step() {
   for (GridSide* s : sides_) s->map_to_grid();
   const bool contact = fields_ == GridFields::kFrictionlessContact;
   if (contact) {
-    // Each side keeps its own field and sees the other's; only the holds add.
-    link_.exchange_nodes(grid::sums::kMass, grid::sums::kHeldAxes, true);
+    // Each side keeps its own field and sees the other's mass, momentum and
+    // force (the lanes before the held axes); only the holds add.
+    link_.exchange_nodes(grid::sums::kMass, grid::sums::kHeldAxes - grid::sums::kMass, true);
     link_.sum_nodes(grid::sums::kHeldAxes, 1);
   } else {
     link_.sum_nodes(grid::sums::kMass, grid::sums::kStride);  // mass, momentum, force, holds
