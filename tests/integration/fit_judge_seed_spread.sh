@@ -10,7 +10,9 @@ export PBMS_NO_PLOTS=1
 # judge samples at other seeds (judge.seed), five for Morse and three for
 # Sutton-Chen (validation, about 25 minutes on 2 cores). The targets' own
 # noise is then one draw shared by all the fits, and the judge's noise is
-# independent between them. Asserted, for every free parameter:
+# independent between them. `short` (the default suite's version, about 2
+# minutes) runs Morse alone on three judge seeds. Asserted, for every free
+# parameter:
 #  - the fits' spread over judge seeds (sample standard deviation s) against
 #    the mean reported sigma: s/sigma inside the 99 % interval of a sample
 #    standard deviation of n normal draws, sqrt(chi2(n-1)/(n-1)) (n = 5:
@@ -18,7 +20,9 @@ export PBMS_NO_PLOTS=1
 #  - every fit within 3 sqrt(2) sigma of the truth: the targets' noise and
 #    the judge's, each about sigma, add.
 cfg="$ROOT/tests/integration/configs"
-for spec in morse:5 sutton_chen:3; do
+specs="morse:5 sutton_chen:3"
+[ "${1:-}" = short ] && specs="morse:3"
+for spec in $specs; do
   form=${spec%%:*}; seeds=${spec##*:}
   "$PY" - "$cfg/fit_recovery_thermal_$form.yaml" "$form" "$seeds" > "spread_$form.yaml" <<'PYEOF' ||
 import copy, sys, yaml
@@ -37,15 +41,16 @@ PYEOF
     fail "config for $form"
   "$PBMS" run "spread_$form.yaml" > "spread_$form.txt" 2>&1 || { cat "spread_$form.txt"; fail "$form fits"; }
 done
-"$PY" - "$cfg" <<'PYEOF'
+"$PY" - "$cfg" $specs <<'PYEOF'
 import math, statistics, sys, yaml
 from scipy.stats import chi2
 from checklist import Checklist
 
 cfg = sys.argv[1]
 check = Checklist()
-for form, free, n in (("morse", ("d0", "alpha", "r0"), 5),
-                      ("sutton_chen", ("epsilon", "c", "n", "m"), 3)):
+free_of = {"morse": ("d0", "alpha", "r0"), "sutton_chen": ("epsilon", "c", "n", "m")}
+for form, n in (spec.split(":") for spec in sys.argv[2:]):
+    free, n = free_of[form], int(n)
     truth = yaml.safe_load(open(f"{cfg}/fit_recovery_thermal_{form}.yaml"))["materials"]["truth"]["potential"]
     stages = yaml.safe_load(open(f"runs/fit_judge_seed_spread_{form}/summary.yaml"))["stages"]
     fits = [stages[f"fit_judge{j}"]["results"] for j in range(1, n + 1)]

@@ -175,16 +175,20 @@ TEST(DpdGridStep, EnergyDriftsAsDpdOnlyWhereNoTwoParticlesShareANode) {
 // The midpoint move (grid::PointMove::kMidpoint) at the configs' cell edge
 // h = a/2, where the step-start move loses a third of the energy in 10 ps:
 // thermostat off, FLIP 1, 1,000 steps of 0.01 ps from the lattice at
-// 298 K, three seeds. Its drift is held to twice DPD-only's (velocity
-// Verlet, the same seed) plus 2 meV, about a 5,000th of the 9.8 eV of
-// kinetic energy the crystal starts with; the step-start move's is 1,700
-// times that. The move is second order: halving dt quarters the spread of
-// the total energy, as it does for velocity Verlet. Momentum stays to
-// round-off.
+// 298 K, three seeds. Over 1,000 steps both drifts are the size of the
+// least-squares slope's own scatter (DPD-only's seeds span 0.2-0.9 meV), so
+// the bound is held on the three seeds together: the root mean
+// square of the grid's drifts within twice DPD-only's (velocity Verlet, the
+// same seeds; measured 1.3 times). Each seed alone is held to twice
+// DPD-only's plus 2 meV, about a 5,000th of the 9.8 eV of kinetic energy
+// the crystal starts with; the step-start move's is 1,700 times that. The move is second order:
+// halving dt quarters the spread of the total energy, as it does for velocity Verlet. Momentum
+// stays to round-off.
 TEST(DpdGridStep, MidpointMoveKeepsTheEnergyWhereParticlesShareNodes) {
   constexpr int kSteps = 1000;
   DpdGridSettings midpoint{kLattice / 2.0, 1.0, 4, {}};
   midpoint.move = grid::PointMove::kMidpoint;
+  double dpd_squares = 0.0, moved_squares = 0.0;
   for (const unsigned seed : {7U, 8U, 9U}) {
     auto reference = nve_crystal(298.0, seed, 0.01);
     const double dpd = drift(energy_series(*reference, nullptr, kSteps));
@@ -196,9 +200,15 @@ TEST(DpdGridStep, MidpointMoveKeepsTheEnergyWhereParticlesShareNodes) {
         "seed %u, energy drift over 10 ps: DPD-only %+.5f eV, grid h = a/2 midpoint %+.5f eV\n",
         seed, dpd, moved);
     EXPECT_LE(std::abs(moved), 2.0 * std::abs(dpd) + 2e-3) << seed;
+    dpd_squares += dpd * dpd;
+    moved_squares += moved * moved;
     const auto p = momentum(*engine);
     for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(p[a] - p0[a]), 1e-9) << seed;
   }
+  const double dpd_rms = std::sqrt(dpd_squares / 3.0), moved_rms = std::sqrt(moved_squares / 3.0);
+  std::printf("rms drift over the three seeds: DPD-only %.5f eV, grid h = a/2 midpoint %.5f eV\n",
+              dpd_rms, moved_rms);
+  EXPECT_LE(moved_rms, 2.0 * dpd_rms);
   std::array<double, 2> spread{};
   for (std::size_t k = 0; k < 2; ++k) {
     const double dt = k == 0 ? 0.01 : 0.005;
