@@ -334,10 +334,11 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
            .def(0.05)
            .above(0)},
       "A tension test between two rigid or frozen groups of either part: stress is the body's "
-      "mean axial stress (DPD conservative virial plus MPM sum of sigma V, over the initial "
-      "cross-section times the current length), strain the change of the grips' separation over "
-      "the body's initial length; the grips' holding force over the initial cross-section is "
-      "reported beside it"));
+      "mean axial stress (DPD conservative virial plus MPM sum of sigma V, over the nominal "
+      "cross-section times the current length; the nominal cross-section is the body's sites "
+      "times a^3/4 over its initial length, which thermal excursions of the outermost sites do "
+      "not widen), strain the change of the grips' separation over the body's initial length; "
+      "the grips' holding force over the nominal cross-section is reported beside it"));
   s.params.push_back(Param::integer("profile_every", "Steps between displacement profiles; 0: none")
                          .def(0)
                          .at_least(0));

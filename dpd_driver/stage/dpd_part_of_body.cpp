@@ -168,6 +168,8 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
   wrap_periodic_axes(model_.particles, model_.box, model_.particles.size());
   const double plane = 0.5 * cp_.material_lattice_constant;
   for (std::size_t a = 0; a < 3; ++a) extent_[a] = extent_along(model_.particles, a, plane);
+  const double a0 = cp_.point_lattice_constant();
+  nominal_volume_ = static_cast<double>(model_.particles.size()) * a0 * a0 * a0 / 4.0;
   SplitBody body = split_body(model_.particles, cp_);
   model_.particles = DpdParticles{};  // now in `body`
   strain_body(body, cp_, {model_.box.lo, model_.box.hi});

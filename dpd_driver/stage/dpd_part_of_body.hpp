@@ -49,6 +49,10 @@ class DpdPartOfBody {
   // The whole body's extent along each axis (outermost sites plus half a
   // plane spacing each side), before the split.
   [[nodiscard]] const std::array<double, 3>& body_extent() const { return extent_; }
+  // The whole body's sites times a³/4 (each MPM point's volume), before
+  // the split: the volume its crystal fills at the run's lattice constant,
+  // whatever its surfaces' thermal excursions.
+  [[nodiscard]] double nominal_volume() const { return nominal_volume_; }
   [[nodiscard]] double dpd_particles() const { return dpd_count_; }
   [[nodiscard]] double mpm_points() const { return mpm_count_; }
 
@@ -67,6 +71,7 @@ class DpdPartOfBody {
   double reach_ = 0.0;
   DpdModel model_;  // its particles and pair style moved into the engine
   std::array<double, 3> extent_{};
+  double nominal_volume_ = 0.0;
   double dpd_count_ = 0.0, mpm_count_ = 0.0;
   std::unique_ptr<DpdEngine> engine_;
   std::unique_ptr<DpdGridStep> grid_;
