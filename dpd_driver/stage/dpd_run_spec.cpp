@@ -82,7 +82,10 @@ config::StageKindSpec DpdRunStage::spec() {
           .require()
           .names_entry_of({"bodies", "groups"}),
       Param::choice("axis", {"x", "y", "z"}, "Pulling direction").def(std::string("x")),
-      Param::real("area", Dimension::kNone, "Cross-section, Å^2 (default: from the extents)")
+      Param::real("area", Dimension::kNone,
+                  "Cross-section, Å^2 (default: the nominal one, the specimen's sites times "
+                  "a^3/4 over its length; its lateral extents at 298 K are wider by the "
+                  "outermost sites' thermal excursions)")
           .above(0),
       Param::map("grips",
                  {Param::identifier("left", "The grip group at the low end")
@@ -91,7 +94,7 @@ config::StageKindSpec DpdRunStage::spec() {
                   Param::identifier("right", "The grip group at the high end")
                       .require()
                       .names_entry_of({"bodies", "groups"})},
-                 "The grip groups, whose pull over the initial cross-section gives "
+                 "The grip groups, whose pull over the cross-section gives "
                  "grip_youngs_modulus")};
   for (auto& q : analysis::TensionTest::params()) tension.push_back(std::move(q));
   s.params.push_back(

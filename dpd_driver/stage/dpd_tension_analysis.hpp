@@ -45,7 +45,8 @@ class DpdTensionAnalysis {
   std::uint32_t specimen_ = 0, left_grip_ = 0, right_grip_ = 0;
   std::unique_ptr<DpdGauge> gauge_;
   double area_ = 0.0, length0_ = 0.0;
-  double width_ = 0.0;  // the widest lateral extent, Å
+  double site_volume_ = 0.0;  // the specimen's sites times a³/4, Å^3
+  double width_ = 0.0;        // the widest lateral extent, Å
   std::vector<double> time_, strain_, stress_, grip_stress_;
 };
 
