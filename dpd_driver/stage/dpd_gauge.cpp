@@ -35,11 +35,16 @@ void DpdGauge::sample(const DpdEngine& engine) {
                            MPI_DOUBLE, MPI_MIN, engine.comm()),
              "MPI_Allreduce");
   const double distance = g.centroid_distance();
-  if (strain_.empty()) distance0_ = distance;
+  const double extents = g.cross_section(plane_);
+  if (strain_.empty()) {
+    distance0_ = distance;
+    extents0_ = extents;
+    if (area0_ <= 0.0) area0_ = extents;
+  }
   strain_.push_back(distance / distance0_ - 1.0);
   // The mean force across the gauge's planes over its section; eV/Å^3 to GPa.
-  stress_.push_back(g.sums[0] / g.cross_section(plane_) * units::kBarPerEvPerA3 /
-                    units::kBarPerGPa);
+  const double area = area0_ * extents / extents0_;
+  stress_.push_back(g.sums[0] / area * units::kBarPerEvPerA3 / units::kBarPerGPa);
 }
 
 void DpdGauge::report(const analysis::TensionTest& test, StageResults& r,
@@ -48,13 +53,16 @@ void DpdGauge::report(const analysis::TensionTest& test, StageResults& r,
 }
 
 void DpdGauge::save(CheckpointArchive& a) const {
-  a.put("gauge/distance0", distance0_);
+  a.put("gauge/measures", std::vector<double>{distance0_, area0_, extents0_});
   a.put("gauge/strain", strain_);
   a.put("gauge/stress", stress_);
 }
 
 void DpdGauge::load(const CheckpointArchive& a) {
-  distance0_ = a.scalar("gauge/distance0");
+  const auto& m = a.get("gauge/measures");
+  distance0_ = m.at(0);
+  area0_ = m.at(1);
+  extents0_ = m.at(2);
   strain_ = a.get("gauge/strain");
   stress_ = a.get("gauge/stress");
 }

@@ -45,6 +45,7 @@ void DpdTensionAnalysis::start(const DpdEngine& engine) {
   // widen the lateral extents by about 0.8 Å, 2 % of a 10 x 10 a_cg rod's
   // area and 4 % of a 6 x 6 one's (docs/concurrent.md).
   area_ = params_.area ? *params_.area : site_volume_ / length0_;
+  if (gauge_) gauge_->set_starting_area(area_);
 }
 
 void DpdTensionAnalysis::sample(const DpdEngine& engine, const ThermoState& thermo, double t) {

@@ -10,8 +10,11 @@ export PBMS_NO_PLOTS=1
 # judge samples at other seeds (judge.seed), five for Morse and three for
 # Sutton-Chen (validation, about 25 minutes on 2 cores). The targets' own
 # noise is then one draw shared by all the fits, and the judge's noise is
-# independent between them. `short` (the default suite's version, about 2
-# minutes) runs Morse alone on three judge seeds. Asserted, for every free
+# independent between them. `short` (the default suite's version, about 1
+# minute) runs Morse alone on three judge seeds, the targets and every
+# judged state sampled over 500 steps instead of 1,000: sigma and the
+# spread both grow by about sqrt(2), and their ratio is what is held.
+# Asserted, for every free
 # parameter:
 #  - the fits' spread over judge seeds (sample standard deviation s) against
 #    the mean reported sigma: s/sigma inside the 99 % interval of a sample
@@ -21,20 +24,25 @@ export PBMS_NO_PLOTS=1
 #    the judge's, each about sigma, add.
 cfg="$ROOT/tests/integration/configs"
 specs="morse:5 sutton_chen:3"
-[ "${1:-}" = short ] && specs="morse:3"
+steps=1000
+[ "${1:-}" = short ] && { specs="morse:3"; steps=500; }
 for spec in $specs; do
   form=${spec%%:*}; seeds=${spec##*:}
-  "$PY" - "$cfg/fit_recovery_thermal_$form.yaml" "$form" "$seeds" > "spread_$form.yaml" <<'PYEOF' ||
+  "$PY" - "$cfg/fit_recovery_thermal_$form.yaml" "$form" "$seeds" "$steps" > "spread_$form.yaml" <<'PYEOF' ||
 import copy, sys, yaml
-path, form, seeds = sys.argv[1], sys.argv[2], int(sys.argv[3])
+path, form, seeds, steps = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
 c = yaml.safe_load(open(path))
 c["run"]["name"] = f"fit_judge_seed_spread_{form}"
 fit = next(st for st in c["stages"] if st["name"] == "fit")
 c["stages"].remove(fit)
+for st in c["stages"]:
+    if "sampling_steps" in st:
+        st["sampling_steps"] = steps
 for j in range(1, seeds + 1):
     st = copy.deepcopy(fit)
     st["name"] = f"fit_judge{j}"
     st["judge"]["seed"] = j
+    st["judge"]["sampling_steps"] = steps
     c["stages"].append(st)
 yaml.safe_dump(c, sys.stdout, sort_keys=False)
 PYEOF

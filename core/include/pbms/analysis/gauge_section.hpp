@@ -13,7 +13,8 @@
 //    gauge gives exactly its strain;
 //  - stress: the force that the material beyond a plane of the gauge exerts
 //    across it, averaged over all planes of the gauge, over the current
-//    cross-section (dpd_run), or the volume mean of the Cauchy stress of
+//    cross-section (dpd_run: the rod's nominal section at the start,
+//    following the gauge's lateral extents in proportion), or the volume mean of the Cauchy stress of
 //    the gauge's points (mpm_run); the two agree for a uniform section.
 // The force across a material plane is the sum of the forces on everything
 // behind it, because pair forces between two particles behind it cancel.
