@@ -50,7 +50,7 @@ PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 # Plots plot.py draws for the whole run, not one stage (their names may
 # begin with a stage's name: a stage called "tension" and tension_curves.png).
 RUN_LEVEL_PNGS = {"concurrent_snapshots.png", "profiles.png", "tension_curves.png",
-                  "impact_slabs.png"}
+                  "impact_slabs_compared.png"}
 # Failures of single candidates of a fit, stored as attributes; counted, not listed.
 FIT_FAILURE_ATTR = ("evaluation_", "_failure")
 

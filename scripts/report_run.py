@@ -75,6 +75,7 @@ class Stage:
     attrs: dict = field(default_factory=dict)    # results.h5 group attributes, as str
     tables: dict = field(default_factory=dict)   # name -> {column: (list, unit)}
     warnings: list = field(default_factory=list)  # the driver's own, from manifest.yaml
+    baseline_of: str = ""  # a later stage that takes this one's noise (`noise_of`) as its baseline
 
 
 @dataclass
@@ -224,6 +225,11 @@ def read_run(run_dir):
     config = load_yaml(os.path.join(run_dir, "config.yaml"), problems)
     names = stage_entries(manifest, summary, config)
     stages = [build_stage(n, manifest, summary, config) for n in names]
+    for st in stages:
+        if isinstance(st.config, dict) and st.config.get("noise_of"):
+            for base in stages:
+                if base.name == st.config["noise_of"]:
+                    base.baseline_of = st.name
     read_results_h5(run_dir, stages, problems)
     run_cfg = config.get("run") if isinstance(config.get("run"), dict) else {}
     name = str(summary.get("run") or run_cfg.get("name") or os.path.basename(os.path.abspath(run_dir)))
@@ -294,6 +300,10 @@ def headline_keys(stage):
     if kind in ("dpd_run", "mpm_run", "concurrent") and truthy_map(cfg, "tension"):
         last = "momentum_change" if kind == "concurrent" else "yield_stress"
         return [("youngs_modulus", True), ("max_stress", True), (last, kind == "concurrent")]
+    if kind == "dpd_run" and stage.baseline_of:  # nothing strikes a baseline: no speeds
+        return [("temperature", True), ("pressure", True), ("energy_drift", True)]
+    if kind == "dpd_run" and truthy_map(cfg, "impact") and "baseline" in cfg["impact"]:
+        return [("wave_speed", True), ("pulse_speed", True), ("baseline_residual", True)]
     if kind == "dpd_run" and truthy_map(cfg, "impact"):
         return [("wave_speed", True), ("mid_amplitude_speed", True), ("particle_velocity", True)]
     if kind == "dpd_run":

@@ -1,5 +1,6 @@
 #include "dpd_impact_analysis.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -7,12 +8,14 @@
 #include "dpd_probes.hpp"
 #include "pbms/analysis/first_crossing.hpp"
 #include "pbms/analysis/front_arrival.hpp"
+#include "pbms/analysis/level_delays.hpp"
 
 namespace pbms::dpd {
 namespace {
 
 // Å/ps is 100 m/s.
 constexpr double kMetresPerSecond = 100.0;
+constexpr std::size_t kPulseLevels = 8;
 
 }  // namespace
 
@@ -34,13 +37,41 @@ void DpdImpactAnalysis::track(const DpdEngine& engine, std::int64_t step, double
   far_.push_back(b[axis] - far0_[axis]);
 }
 
+std::vector<double> DpdImpactAnalysis::less_baseline(const std::vector<double>& mine,
+                                                     const std::vector<double>& base) {
+  std::vector<double> out(mine.size());
+  for (std::size_t k = 0; k < mine.size(); ++k) out[k] = mine[k] - base.at(k);
+  return out;
+}
+
 void DpdImpactAnalysis::report(StageResults& r) const {
   r.add_column("slabs", "time", "ps", time_);
   r.add_column("slabs", "near_displacement", "Å", near_);
   r.add_column("slabs", "far_displacement", "Å", far_);
+  if (params_.baseline) {
+    const std::vector<double> near = less_baseline(near_, params_.baseline->near);
+    const std::vector<double> far = less_baseline(far_, params_.baseline->far);
+    r.add_column("slabs", "near_response", "Å", near);
+    r.add_column("slabs", "far_response", "Å", far);
+    report_arrivals(r, near, far);
+  } else {
+    report_arrivals(r, near_, far_);
+  }
+}
+
+void DpdImpactAnalysis::report_arrivals(StageResults& r, const std::vector<double>& near_history,
+                                        const std::vector<double>& far_history) const {
   const double distance = std::abs(far0_[params_.axis] - near0_[params_.axis]);
-  const double t_near = analysis::first_crossing(time_, near_, params_.threshold);
-  const double t_far = analysis::first_crossing(time_, far_, params_.threshold);
+  const double t_near = analysis::first_crossing(time_, near_history, params_.threshold);
+  const double t_far = analysis::first_crossing(time_, far_history, params_.threshold);
+  report_pulse(r, near_history, far_history, distance);
+  if (params_.baseline && !std::isnan(t_near)) {
+    double residual = 0.0;
+    for (std::size_t k = 0; k < time_.size() && time_[k] < t_near; ++k) {
+      residual = std::max(residual, std::abs(far_history[k]));
+    }
+    r.add_scalar("baseline_residual", residual, "Å");
+  }
   if (!(t_far > t_near)) {
     r.attributes["wave_speed"] = fmt::format(
         "not measured: the wave did not reach both slabs (first motion near {:.4g} ps, far "
@@ -52,10 +83,10 @@ void DpdImpactAnalysis::report(StageResults& r) const {
   r.add_scalar("first_motion_near", t_near, "ps");
   r.add_scalar("first_motion_far", t_far, "ps");
   r.add_scalar("first_motion_speed", first_motion_speed, "m/s");
-  const analysis::FrontArrival near =
-      analysis::mid_amplitude_arrival(time_, near_, t_near, params_.smoothing, params_.window);
+  const analysis::FrontArrival near = analysis::mid_amplitude_arrival(
+      time_, near_history, t_near, params_.smoothing, params_.window);
   const analysis::FrontArrival far =
-      analysis::mid_amplitude_arrival(time_, far_, t_far, params_.smoothing, params_.window);
+      analysis::mid_amplitude_arrival(time_, far_history, t_far, params_.smoothing, params_.window);
   if (far.time > near.time) {
     const double speed = distance / (far.time - near.time) * kMetresPerSecond;
     r.add_scalar("mid_amplitude_speed", speed, "m/s");
@@ -72,6 +103,24 @@ void DpdImpactAnalysis::report(StageResults& r) const {
         near.time, far.time);
   }
   if (!params_.mid_amplitude) r.add_scalar("wave_speed", first_motion_speed, "m/s");
+}
+
+void DpdImpactAnalysis::report_pulse(StageResults& r, const std::vector<double>& near,
+                                     const std::vector<double>& far, double distance) const {
+  const analysis::LevelDelays d =
+      analysis::level_delays(time_, near, far, params_.pulse_lo, params_.pulse_hi, kPulseLevels);
+  if (d.mean() > 0.0) {
+    r.add_scalar("pulse_speed", distance / d.mean() * kMetresPerSecond, "m/s");
+    std::vector<double> speeds;
+    for (const double delay : d.delays) speeds.push_back(distance / delay * kMetresPerSecond);
+    r.add_column("pulse", "level", "Å", d.levels);
+    r.add_column("pulse", "delay", "ps", d.delays);
+    r.add_column("pulse", "speed", "m/s", speeds);
+  } else {
+    r.attributes["pulse_speed"] =
+        fmt::format("not measured: the slabs do not both reach every level from {:.4g} to {:.4g} Å",
+                    params_.pulse_lo, params_.pulse_hi);
+  }
 }
 
 void DpdImpactAnalysis::save(CheckpointArchive& a) const {

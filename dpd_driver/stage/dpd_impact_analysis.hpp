@@ -1,6 +1,9 @@
 // The impact analysis of a dpd_run stage (mode impact, seed §5.2.1): the
 // centre-of-mass displacement of two slabs along the wave's axis every
-// step, and from their arrival times the wave speed between them.
+// step, and from their arrival times the wave speed between them. With a
+// baseline (the same body from the same start with the same noise, not
+// struck) the speeds are timed on the difference, the slabs' response to
+// the impact alone.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +33,15 @@ class DpdImpactAnalysis {
   void load(const CheckpointArchive& a);
 
  private:
+  // The speeds from one pair of histories: the slabs' own or, with a
+  // baseline, their responses.
+  void report_arrivals(StageResults& r, const std::vector<double>& near,
+                       const std::vector<double>& far) const;
+  void report_pulse(StageResults& r, const std::vector<double>& near,
+                    const std::vector<double>& far, double distance) const;
+  static std::vector<double> less_baseline(const std::vector<double>& mine,
+                                           const std::vector<double>& base);
+
   ImpactParams params_;
   std::uint32_t near_mask_ = 0, far_mask_ = 0;
   Vec3 near0_{}, far0_{};

@@ -202,11 +202,28 @@ void report_run(StageResults& r, const DpdEngine& engine, const DpdProbeSeries& 
   probes.report_table(r);
 }
 
+// A baseline is subtracted sample by sample: it must have been taken over
+// the same steps of the same length.
+void check_baseline(const ImpactParams& impact, std::int64_t steps, double dt,
+                    const std::string& stage) {
+  if (!impact.baseline) return;
+  const std::vector<double>& t = impact.baseline->time;
+  const bool same = t.size() == static_cast<std::size_t>(steps) + 1 &&
+                    (steps == 0 || std::abs(t[1] - t[0] - dt) <= 1e-9 * dt);
+  if (!same) {
+    throw Error(fmt::format(
+        "stage '{}': impact.baseline has {} samples {} ps apart; this stage takes {} of {} ps: "
+        "run the baseline with the same steps and dt",
+        stage, t.size(), t.size() > 1 ? t[1] - t[0] : 0.0, steps + 1, dt));
+  }
+}
+
 void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   const DpdStageParams& p = rp.stage;
   use_run_directory(ctx.run_dir());
   const MesoparticleMaterial material = MesoparticleMaterial::from_yaml(ctx.material(p.material));
-  DpdModel model = build_dpd_model(p, material, stage_seed(ctx.seed(), ctx.stage()), ctx.stage());
+  DpdModel model = build_dpd_model(
+      p, material, stage_seed(ctx.seed(), rp.noise_of.value_or(ctx.stage())), ctx.stage());
   std::optional<DpdTensionAnalysis> tension;
   if (rp.tension) tension.emplace(*rp.tension, model, material);
   DpdEngine engine(ctx.comm(), model.box, std::move(model.pair), model.settings,
@@ -220,6 +237,7 @@ void run_stage(StageContext& ctx, const DpdRunParams& rp) {
   std::optional<DpdImpactAnalysis> impact;
   if (rp.mode == Mode::kImpact) {
     if (!rp.impact) throw Error(fmt::format("stage '{}': mode impact needs `impact`", ctx.stage()));
+    check_baseline(*rp.impact, p.steps, engine.settings().dt, ctx.stage());
     impact.emplace(*rp.impact, model, engine);
   }
   if (rp.mode == Mode::kTension) {

@@ -1,6 +1,24 @@
 #include "dpd_run_params.hpp"
 
+#include <fmt/format.h>
+
+#include "pbms/error.hpp"
+
 namespace pbms::dpd {
+
+SlabBaseline SlabBaseline::from_yaml(const YAML::Node& table) {
+  const auto column = [&](const char* name) {
+    if (!table[name]) {
+      throw Error(
+          fmt::format("impact.baseline: the table has no column '{}': it must be the "
+                      "`slabs` table of an earlier dpd_run impact stage",
+                      name));
+    }
+    return table[name]["values"].as<std::vector<double>>();
+  };
+  SlabBaseline b{column("time"), column("near_displacement"), column("far_displacement")};
+  return b;
+}
 
 ImpactParams ImpactParams::from_yaml(const YAML::Node& impact) {
   ImpactParams i;
@@ -11,6 +29,10 @@ ImpactParams ImpactParams::from_yaml(const YAML::Node& impact) {
   i.mid_amplitude = impact["arrival"].as<std::string>() == "mid_amplitude";
   i.smoothing = impact["smoothing"].as<double>();
   i.window = impact["window"].as<double>();
+  if (const YAML::Node b = impact["baseline"]) i.baseline = SlabBaseline::from_yaml(b);
+  const auto levels = impact["pulse_levels"].as<std::vector<double>>();
+  i.pulse_lo = levels.at(0);
+  i.pulse_hi = levels.at(1);
   return i;
 }
 
@@ -35,6 +57,7 @@ DpdRunParams DpdRunParams::from_yaml(const YAML::Node& p) {
   if (r.mode == Mode::kTension && p["tension"]) r.tension = TensionParams::from_yaml(p["tension"]);
   r.necks = coupling::necks_from_yaml(p["necks"]);
   r.neck_stable_time = p["neck_stable_time"].as<double>();
+  if (p["noise_of"]) r.noise_of = p["noise_of"].as<std::string>();
   return r;
 }
 

@@ -17,6 +17,14 @@
 
 namespace pbms::dpd {
 
+// The slabs' histories of the same body run without the impact: the
+// `slabs` table of an earlier dpd_run stage.
+struct SlabBaseline {
+  std::vector<double> time, near, far;  // ps, Å, Å
+
+  static SlabBaseline from_yaml(const YAML::Node& table);
+};
+
 // mode: impact. The wave between two slabs.
 struct ImpactParams {
   std::string near_slab, far_slab;
@@ -25,6 +33,8 @@ struct ImpactParams {
   bool mid_amplitude = false;  // wave_speed times the mid-amplitude arrival, not first motion
   double smoothing = 0.0;      // ps
   double window = 0.0;         // ps
+  std::optional<SlabBaseline> baseline;
+  double pulse_lo = 0.0, pulse_hi = 0.0;  // Å: the ladder of levels of pulse_speed
 
   static ImpactParams from_yaml(const YAML::Node& impact);
 };
@@ -50,6 +60,9 @@ struct DpdRunParams {
   double tau = 0.0;                 // ps
   std::vector<coupling::NeckPair> necks;
   double neck_stable_time = 20.0;  // ps
+  // The stage whose noise stream (and drawn velocities) this one takes:
+  // a baseline run and the run it is subtracted from share their noise.
+  std::optional<std::string> noise_of;
 
   // dpd_run's map, with its mode.
   static DpdRunParams from_yaml(const YAML::Node& params);

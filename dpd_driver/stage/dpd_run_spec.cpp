@@ -74,7 +74,19 @@ config::StageKindSpec DpdRunStage::spec() {
                        "Mid-amplitude: the front's top is the largest smoothed velocity within "
                        "this time of the first motion")
                .def(0.1)
-               .above(0)},
+               .above(0),
+           Param::table("baseline",
+                        "The `slabs` table of an earlier dpd_run impact stage of the same body "
+                        "and start without the impact, whose noise this stage takes "
+                        "(`noise_of`): its histories are subtracted from this stage's before any "
+                        "arrival is timed, which removes the body's own drift and most of its "
+                        "thermal motion (the subtraction technique of nonequilibrium MD)"),
+           Param::real_list("pulse_levels", Dimension::kLength,
+                            "pulse_speed: the lowest and highest of 8 displacement levels, "
+                            "equally spaced in their logarithm, at which the slabs' delays are "
+                            "averaged")
+               .length(2, 2)
+               .def(std::vector<double>{0.05, 0.4})},
           "mode: impact")
           .required_when("mode", "impact"));
   std::vector<Param> tension = {
@@ -104,7 +116,27 @@ config::StageKindSpec DpdRunStage::spec() {
           .required_when("mode", "tension"));
   s.params.push_back(coupling::necks_param());
   s.params.push_back(coupling::neck_stable_time_param());
+  s.params.push_back(
+      Param::identifier("noise_of",
+                        "Draw the pair noise and any velocities as this earlier dpd_run stage "
+                        "did (the run seed mixed with its name, not this stage's), so that a "
+                        "stage and its impact.baseline share their thermal noise")
+          .earlier_stage({"dpd_run"}));
   s.outputs = common_outputs();
+  s.outputs.push_back({"slabs", OutputSpec::Shape::kTable, "",
+                       "time, near_displacement, far_displacement of the two slabs every step "
+                       "and, with a baseline, near_response and far_response: the same less the "
+                       "baseline's (impact)"});
+  s.outputs.push_back({"pulse_speed", OutputSpec::Shape::kScalar, "m/s",
+                       "Distance between the slabs over the mean delay of their displacements "
+                       "(responses, with a baseline) at impact.pulse_levels (impact)"});
+  s.outputs.push_back({"pulse", OutputSpec::Shape::kTable, "",
+                       "level, delay, speed: the slabs' delay and the speed it gives at each "
+                       "of pulse_speed's levels (impact)"});
+  s.outputs.push_back({"baseline_residual", OutputSpec::Shape::kScalar, "Å",
+                       "The largest far-slab response before the near slab's first motion: how "
+                       "well the baseline cancels the body's own motion (impact, with a "
+                       "baseline)"});
   s.outputs.push_back({"grip_youngs_modulus", OutputSpec::Shape::kScalar, "GPa",
                        "Slope of the grips' stress (the rod's pull on them: the pair force on the "
                        "left grip less that on the right, halved, over the initial "

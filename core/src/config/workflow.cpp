@@ -316,7 +316,7 @@ class WorkflowLoader {
   }
 
   void check_stage_reference(const Reference& r, const YAML::Mark& m, int idx) {
-    const int target_idx = earlier_stage(r.target, idx, m, r.key_path, "start from");
+    const int target_idx = earlier_stage(r.target, idx, m, r.key_path, "name");
     const StageKindSpec* spec = target_idx >= 0 ? stage_specs_[target_idx] : nullptr;
     if (spec && std::find(r.kinds.begin(), r.kinds.end(), spec->kind) == r.kinds.end()) {
       v_.error_at(m, r.key_path,
