@@ -314,6 +314,8 @@ def headline_keys(stage):
         return [("period", True), ("energy_drift", False), ("energy_max_deviation", False)]
     if kind == "mpm_run":
         return [("energy_max_deviation", False), ("energy_drift", False), ("particles", True)]
+    if kind == "concurrent" and stage.baseline_of:  # nothing strikes a baseline: no speeds
+        return [("momentum_change", True), ("dpd_temperature", True)]
     if kind == "concurrent":
         speeds = wave_speed_keys(cfg)[:2]
         if speeds:

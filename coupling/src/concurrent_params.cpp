@@ -7,11 +7,42 @@
 #include <fmt/ranges.h>
 
 #include "pbms/config/axis_name.hpp"
+#include "pbms/error.hpp"
 #include "pbms/geometry/region_yaml.hpp"
 #include "pbms/units.hpp"
 
 namespace pbms::coupling {
 namespace {
+
+// A baseline is subtracted sample by sample: it must cover this stage's
+// steps at the same step length and hold every slab the speeds time.
+void check_baseline(const ConcurrentParams& c) {
+  if (c.baseline.empty()) return;
+  for (const auto& [side, columns] : c.baseline) {
+    const auto t = columns.find("time");
+    const bool covers =
+        t != columns.end() && t->second.size() >= static_cast<std::size_t>(c.steps) + 1 &&
+        (c.steps == 0 || std::abs(t->second[1] - t->second[0] - c.time_step) <= 1e-9 * c.time_step);
+    if (!covers) {
+      throw Error(fmt::format(
+          "wave.baseline.{}: the baseline must be an earlier stage's {}_slabs table over at "
+          "least this stage's {} steps of {} ps: run the baseline as long, with the same time_step",
+          side, side, c.steps, c.time_step));
+    }
+  }
+  for (const auto& s : c.speeds) {
+    for (const auto& slab : {s.near_slab, s.far_slab}) {
+      const bool held = std::any_of(c.baseline.begin(), c.baseline.end(),
+                                    [&](const auto& b) { return b.second.count(slab) != 0; });
+      if (!held) {
+        throw Error(
+            fmt::format("wave.baseline: slab '{}' of speed '{}' is not in the baseline's "
+                        "slabs: the baseline stage must time the same speeds",
+                        slab, s.name));
+      }
+    }
+  }
+}
 
 using config::axis_index;
 
@@ -152,7 +183,17 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
       c.opening =
           std::make_pair(o["dpd_plane"].as<std::string>(), o["mpm_plane"].as<std::string>());
     }
+    for (const char* side : {"dpd", "mpm"}) {
+      const YAML::Node table = w["baseline"] ? w["baseline"][side] : YAML::Node();
+      if (!table) continue;
+      for (const auto& column : table) {
+        c.baseline[side][column.first.as<std::string>()] =
+            column.second["values"].as<std::vector<double>>();
+      }
+    }
   }
+  if (p["noise_of"]) c.noise_of = p["noise_of"].as<std::string>();
+  check_baseline(c);
   if (const YAML::Node t = p["tension"]) {
     c.tension = TensionProbe{t["left_grip"].as<std::string>(), t["right_grip"].as<std::string>(),
                              axis_index(t["axis"].as<std::string>()), t["fit_strain"].as<double>()};

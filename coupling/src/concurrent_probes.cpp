@@ -162,11 +162,28 @@ void ConcurrentProbes::profile(double t, const ParticleView& now) {
   profiles_.push_back(std::move(mean));
 }
 
+// The slabs' histories to time: their own or, with a baseline for this
+// side, less the baseline's sample by sample (its response to the impact).
+std::vector<std::vector<double>> ConcurrentProbes::timed_histories(
+    const std::string& prefix) const {
+  const auto base = p_.baseline.find(prefix);
+  if (base == p_.baseline.end()) return tracked_s_;
+  std::vector<std::vector<double>> out = tracked_s_;
+  for (std::size_t k = 0; k < tracked_.size(); ++k) {
+    const std::vector<double>& b = base->second.at(tracked_[k]);
+    for (std::size_t j = 0; j < out[k].size(); ++j) out[k][j] -= b.at(j);
+  }
+  return out;
+}
+
 void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const {
+  const std::vector<std::vector<double>> timed = timed_histories(prefix);
+  const bool with_baseline = p_.baseline.count(prefix) != 0;
   if (!tracked_.empty()) {
     r.add_column(prefix + "_slabs", "time", "ps", track_t_);
     for (std::size_t k = 0; k < tracked_.size(); ++k) {
       r.add_column(prefix + "_slabs", tracked_[k], "Å", tracked_s_[k]);
+      if (with_baseline) r.add_column(prefix + "_slabs", tracked_[k] + "_response", "Å", timed[k]);
     }
   }
   for (const auto& s : p_.speeds) {
@@ -175,12 +192,19 @@ void ConcurrentProbes::report(StageResults& r, const std::string& prefix) const 
     if (near == tracked_.end() || far == tracked_.end()) continue;
     const auto in = static_cast<std::size_t>(near - tracked_.begin());
     const auto jf = static_cast<std::size_t>(far - tracked_.begin());
-    const auto& sn = tracked_s_[in];
-    const auto& sf = tracked_s_[jf];
+    const auto& sn = timed[in];
+    const auto& sf = timed[jf];
     const double tn = analysis::first_crossing(track_t_, sn, p_.threshold);
     const double tf = analysis::first_crossing(track_t_, sf, p_.threshold);
     r.add_scalar("first_motion_" + s.near_slab, tn, "ps");
     r.add_scalar("first_motion_" + s.far_slab, tf, "ps");
+    if (with_baseline && !std::isnan(tn)) {
+      double residual = 0.0;
+      for (std::size_t j = 0; j < track_t_.size() && track_t_[j] < tn; ++j) {
+        residual = std::max(residual, std::abs(sf[j]));
+      }
+      r.add_scalar("baseline_residual_" + s.name, residual, "Å");
+    }
     // Å/ps is 100 m/s.
     const double distance = std::abs(tracked_at_[jf] - tracked_at_[in]) * 100.0;
     const auto fn = analysis::mid_amplitude_arrival(track_t_, sn, tn, p_.smoothing, p_.window);

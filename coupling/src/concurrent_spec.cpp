@@ -115,7 +115,15 @@ Param wave() {
                        .require()
                        .names_entry_of({"bodies", "groups"})},
                   "The interface opening: how far the two planes have moved apart along the axis "
-                  "since the start, each plane's particles counted whichever solver holds them")},
+                  "since the start, each plane's particles counted whichever solver holds them"),
+       Param::map("baseline",
+                  {Param::table("dpd", "The `dpd_slabs` table of the baseline stage"),
+                   Param::table("mpm", "The `mpm_slabs` table of the baseline stage")},
+                  "The slab histories of an earlier concurrent stage of the same body and start "
+                  "that was not struck, whose noise this stage takes (`noise_of`): subtracted "
+                  "from this stage's before any arrival is timed, which removes the body's own "
+                  "drift and thermal motion; it must have run at least as many steps of the "
+                  "same length")},
       "Wave speeds in each part and the interface opening");
 }
 
@@ -321,6 +329,12 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
           "between its ends")
           .def(std::vector<std::string>{}));
   s.params.push_back(wave());
+  s.params.push_back(
+      Param::identifier("noise_of",
+                        "Draw the DPD part's pair noise and any velocities as this earlier "
+                        "concurrent stage did (the run seed mixed with its name), so that a stage "
+                        "and its wave.baseline share their thermal noise")
+          .earlier_stage({"concurrent"}));
   s.params.push_back(Param::map(
       "tension",
       {Param::identifier("left_grip", "The rigid group pulled towards -axis")
@@ -398,6 +412,18 @@ config::StageKindSpec concurrent_spec(std::vector<Param> body_params) {
       {"mpm_ledger", OutputSpec::Shape::kTable, "",
        "Every step, the MPM part's mass, momentum, kinetic, stored and dissipated energy"},
       {"interface", OutputSpec::Shape::kTable, "", "The wave.opening planes' jump against time"},
+      {"dpd_slabs", OutputSpec::Shape::kTable, "",
+       "Every step, the displacement along the wave's axis of each wave.speeds slab the DPD part "
+       "holds and, with a wave.baseline, the same less the baseline's (<slab>_response)"},
+      {"mpm_slabs", OutputSpec::Shape::kTable, "", "The same, MPM part"},
+      {"wave_speed_<name>", OutputSpec::Shape::kScalar, "m/s",
+       "Distance between the speed's slabs over the difference of their first motions "
+       "(wave.threshold; of their responses, with a wave.baseline)"},
+      {"front_speed_<name>", OutputSpec::Shape::kScalar, "m/s",
+       "The same, half way up the slabs' velocity rise"},
+      {"baseline_residual_<name>", OutputSpec::Shape::kScalar, "Å",
+       "The far slab's largest response before the near slab's first motion: how well the "
+       "baseline cancels the body's own motion (wave.baseline)"},
       {"dpd_exchange", OutputSpec::Shape::kTable, "",
        "Per dpd_driver rank: messages, bytes sent and received, seconds packing and waiting, of "
        "the nodal sums (nodal_) and of the partners and their reactions (partner_); the "

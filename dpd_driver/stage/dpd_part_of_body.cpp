@@ -160,8 +160,8 @@ DpdPartOfBody::DpdPartOfBody(MPI_Comm comm, const YAML::Node& params, const YAML
                              std::uint64_t seed, const std::string& stage)
     : cp_(coupling::ConcurrentParams::from_yaml(params, material)),
       model_(build_dpd_model(DpdStageParams::from_yaml(params),
-                             MesoparticleMaterial::from_yaml(material), stage_seed(seed, stage),
-                             stage)) {
+                             MesoparticleMaterial::from_yaml(material),
+                             stage_seed(seed, cp_.noise_of.value_or(stage)), stage)) {
   // A state from an earlier stage may lie a little outside the box on a
   // periodic axis (positions wrap at list builds only); the regions see it
   // inside.

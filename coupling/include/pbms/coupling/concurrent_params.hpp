@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -128,6 +129,13 @@ struct ConcurrentParams {
   double smoothing = 0.05;  // ps, mid-amplitude arrival: the velocity's running mean
   double window = 0.1;      // ps, mid-amplitude arrival: the top's distance from first motion
   std::vector<SpeedProbe> speeds;
+  // wave.baseline: per side ("dpd", "mpm"), the slab histories of an
+  // earlier stage of the same body and start that was not struck, column by
+  // column (time and one per slab); subtracted before any arrival is timed.
+  std::map<std::string, std::map<std::string, std::vector<double>>> baseline;
+  // The earlier stage whose noise stream the DPD part draws (its name
+  // mixed with the run seed), so that a stage and its baseline share it.
+  std::optional<std::string> noise_of;
   // The lattice planes on either side of the interface (groups), whose
   // displacement jump is the interface opening.
   std::optional<std::pair<std::string, std::string>> opening;  // dpd plane, mpm plane

@@ -82,6 +82,7 @@ class ConcurrentProbes {
   [[nodiscard]] std::array<double, 3> moments(std::uint32_t mask, const ParticleView& now) const;
   [[nodiscard]] double centre(std::uint32_t mask, const ParticleView& now) const;
   void profile(double t, const ParticleView& now);
+  [[nodiscard]] std::vector<std::vector<double>> timed_histories(const std::string& prefix) const;
 
   MPI_Comm comm_;
   const ConcurrentParams& p_;
