@@ -127,6 +127,8 @@ ConcurrentParams ConcurrentParams::from_yaml(const YAML::Node& p, const YAML::No
   c.grid = grid::RegularGrid({origin[0], origin[1], origin[2]}, g["cell_size"].as<double>(),
                              {cells[0], cells[1], cells[2]});
   c.flip = g["flip"].as<double>();
+  c.move = g["move"].as<std::string>() == "midpoint" ? grid::PointMove::kMidpoint
+                                                     : grid::PointMove::kStepStart;
   c.band_margin = g["band_margin"].as<double>();
   for (const auto& a : p["box"]["periodic"]) c.periodic[axis_index(a.as<std::string>())] = true;
   for (const auto& r : p["regions"]) {

@@ -28,6 +28,13 @@ Param shared_grid() {
            .def(1.0)
            .at_least(0)
            .at_most(1),
+       Param::choice("move", {"step_start", "midpoint"},
+                     "How both programs move their particles and points: step_start, with the "
+                     "grid velocity at the step's start (MUSL; loses kinetic energy where "
+                     "particles share nodes); midpoint, with the grid velocity at the move's "
+                     "midpoint, the nodal sums of that second map summed across the programs "
+                     "once more a step (docs/concurrent.md)")
+           .def(std::string("step_start")),
        Param::real("band_margin", Dimension::kLength,
                    "How far particles may travel from their start: the interface band's "
                    "nodes reach this much beyond where both bodies touch")

@@ -25,6 +25,7 @@ class ConcurrentDpdSide : public coupling::ParticleSide {
   void update_nodes() override;
   [[nodiscard]] coupling::NodalRecords held_nodes() override;
   void map_back() override;
+  void map_at_midpoints() override { grid_.map_at_midpoints(); }
   void finish_step() override { grid_.finish_step(); }
   [[nodiscard]] MPI_Comm comm() const override { return engine_.comm(); }
   [[nodiscard]] bool wants_new_partners() override { return grid_.list_needs_rebuild(); }

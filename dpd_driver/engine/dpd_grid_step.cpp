@@ -54,11 +54,6 @@ DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings)
 DpdGridStep::DpdGridStep(DpdEngine& engine, const DpdGridSettings& settings,
                          const grid::RegularGrid& grid, const std::array<bool, 3>& periodic)
     : engine_(engine), settings_(settings) {
-  if (settings.move == grid::PointMove::kMidpoint) {
-    throw Error(
-        "DPD/MPM grid: the midpoint move needs the whole nodal sums in the DPD program; "
-        "on a grid another program shares, the particles move from the step's start");
-  }
   if (std::abs(grid.cell_size() - settings.cell_size) > 1e-12 * settings.cell_size) {
     throw Error(fmt::format("DPD/MPM grid: the cell size {:g} Å is not the grid's spacing {:g} Å",
                             settings.cell_size, grid.cell_size()));
@@ -260,6 +255,7 @@ void DpdGridStep::step() {
   map_to_grid();
   update_nodes();
   map_back();
+  map_at_midpoints();
   finish_step();
 }
 
@@ -312,8 +308,13 @@ void DpdGridStep::map_back() {
   solver_->complete_remap_sums();
 }
 
+void DpdGridStep::map_at_midpoints() {
+  solver_->update_stress_and_map_midpoints(points_, bc_, engine_.settings().dt);
+  solver_->complete_midpoint_sums();
+}
+
 void DpdGridStep::finish_step() {
-  solver_->update_stress_and_move(points_, bc_, engine_.settings().dt);
+  solver_->move_from_midpoints(points_, bc_, engine_.settings().dt);
   store_points();
   engine_.count_step();
   // The engine is read between steps (thermo's energy and virial): its

@@ -99,8 +99,12 @@ class DpdGridStep {
   void map_to_grid();     // mass, momentum, pair forces to the nodes (s-1, s-2, s-3b)
   void update_nodes();    // nodal update, rigid groups held, free bodies balanced (s-4 to s-6)
   void map_back();        // grid to particles, remap (s-7 to s-10)
-  void finish_step();     // move with the grid velocity (s-11), step counted, ghosts
-                          // follow
+  // The stress update and, with the midpoint move, half a move and the
+  // map at the midpoints (this program's part of those sums, complete
+  // over its ranks; a coupling scheme adds the other program's).
+  void map_at_midpoints();
+  void finish_step();  // move with the grid velocity (s-11), step counted, ghosts
+                       // follow
 
   // The velocity a rigid (not free) group of settings.rigid moves at from
   // the next step on (a grip on a velocity ramp).

@@ -388,7 +388,7 @@ void ConcurrentStage::run(StageContext& ctx) {
   const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
   coupling::CrossProgramLink link(inter, part.side(), grid.partition(), theirs, part.band(),
                                   part.reach());
-  coupling::CouplingScheme scheme({&part.side()}, link, cp.interface, cp.fields());
+  coupling::CouplingScheme scheme({&part.side()}, link, cp.interface, cp.fields(), cp.move);
 
   DpdView view;
   coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),

@@ -138,6 +138,7 @@ DpdGridSettings grid_settings(const ConcurrentParams& cp, const DpdModel& model)
   DpdGridSettings s;
   s.cell_size = cp.grid.cell_size();
   s.flip = cp.flip;
+  s.move = cp.move;
   s.contact = cp.fields() == coupling::GridFields::kFrictionlessContact;
   for (const auto& m : model.group_motions) s.rigid.push_back({m.mask, m.velocity, m.free_body});
   return s;

@@ -1265,6 +1265,13 @@ void MpmSolver::complete_remap_sums() {
 // update-stress-first the points have moved already.
 void MpmSolver::update_stress_and_move(MaterialPoints& points, const BoundaryConditions& bc,
                                        double dt) {
+  update_stress_and_map_midpoints(points, bc, dt);
+  complete_midpoint_sums();
+  move_from_midpoints(points, bc, dt);
+}
+
+void MpmSolver::update_stress_and_map_midpoints(MaterialPoints& points,
+                                                const BoundaryConditions& bc, double dt) {
   enter(Phase::kUpdateStress);
   if (opt_.stress_update != StressUpdate::kLast) return;
   if (opt_.contact != ContactField::kNone) contact_on_remap();
@@ -1274,48 +1281,69 @@ void MpmSolver::update_stress_and_move(MaterialPoints& points, const BoundaryCon
   if (opt_.ddmp) nodal_gradient(remap_velocity_, G_);
   if (opt_.move == PointMove::kMidpoint) {
     // The stress is updated at the start; the move is made in
-    // move_from_midpoints, its first half with the remapped velocity, so
-    // that the midpoint is where the points' new momentum carries them.
+    // move_from_midpoints, its first half here with the remapped velocity,
+    // so that the midpoint is where the points' new momentum carries them.
     start_positions_ = points.x;
     pack_kinematics(remap_velocity_, remap_velocity_);
     with_eval([&](const auto& eval) {
       stress_and_move(eval, points, bc, dt, 0.0);
-      move_from_midpoints(eval, points, bc, dt);
+      map_at_midpoints(eval, points, bc, dt);
     });
+    midpoint_pending_ = true;
     return;
   }
   pack_kinematics(remap_velocity_, velocity_);
   with_eval([&](const auto& eval) { stress_and_move(eval, points, bc, dt, dt); });
 }
 
+void MpmSolver::complete_midpoint_sums() {
+  if (midpoint_pending_) sum_shared(sums::kMass, 4);
+}
+
+void MpmSolver::move_from_midpoints(MaterialPoints& points, const BoundaryConditions& bc,
+                                    double dt) {
+  if (!midpoint_pending_) return;
+  midpoint_pending_ = false;
+  nodal_velocities(bc, remap_velocity_);
+  impose_rigid(bc, remap_velocity_);
+  for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;
+  with_eval([&](const auto& eval) { move_with_midpoint_velocity(eval, points, bc, dt); });
+}
+
+// The weights at a midpoint are those of the cell it stands in. One that
+// stands past this rank's box (its point crosses into another rank's cells
+// this step, and migrates before the next) takes them at the box's face:
+// the one place where ranks change more than round-off (1e-5 Å in 250 steps
+// of tests/integration/configs/dpd_grid_ranks.yaml on 4 ranks). Weights
+// extended from the start cell instead would keep ranks exact, but a
+// crystal whose particles sit on nodes then gained 2.4 eV in 10 ps.
 template <class Eval>
-void MpmSolver::move_from_midpoints(const Eval& eval, MaterialPoints& points,
-                                    const BoundaryConditions& bc, double dt) {
-  const size_t n = points.size();
-  const bool prescribed = !bc.point_velocities.empty();
-  // The weights at a midpoint are those of the cell it stands in. One that
-  // stands past this rank's box (its point crosses into another rank's
-  // cells this step, and migrates before the next) takes them at the box's
-  // face: the one place where ranks change more than round-off (1e-5 Å in
-  // 250 steps of tests/integration/configs/dpd_grid_ranks.yaml on 4 ranks).
-  // Weights extended from the start cell instead would keep ranks exact,
-  // but a crystal whose particles sit on nodes then gained 2.4 eV in 10 ps.
+auto MpmSolver::midpoint_stencil(const Eval& eval, const MaterialPoints& points, size_t p) const {
   const auto& lo = local_.origin();
   const auto& hi = local_.upper();
-  const auto midpoint = [&](size_t p) {
-    Vec3 x = points.x[p];
-    for (size_t a = 0; a < 3; ++a) x[a] = std::clamp(x[a], lo[a], hi[a]);
-    return eval(x);
-  };
-  const auto remapped_velocity = [&](const auto& s) {
-    Vec3 vel{0.0, 0.0, 0.0};
-    for (int q = 0; q < s.count; ++q) {
-      const auto qq = static_cast<size_t>(q);
-      add_scaled(vel, s.N[qq], remap_velocity_[static_cast<size_t>(s.node[qq])]);
-    }
-    return vel;
-  };
-  // The first half of the move, with the remapped velocity at the start.
+  Vec3 x = points.x[p];
+  for (size_t a = 0; a < 3; ++a) x[a] = std::clamp(x[a], lo[a], hi[a]);
+  return eval(x);
+}
+
+template <class Stencil>
+Vec3 MpmSolver::remapped_velocity(const Stencil& s) const {
+  Vec3 vel{0.0, 0.0, 0.0};
+  for (int q = 0; q < s.count; ++q) {
+    const auto qq = static_cast<size_t>(q);
+    add_scaled(vel, s.N[qq], remap_velocity_[static_cast<size_t>(s.node[qq])]);
+  }
+  return vel;
+}
+
+// PointMove::kMidpoint's first half: each point moves half a step with the
+// remapped velocity at its start, and its mass and momentum are mapped
+// there, replacing the step's mass and momentum sums (this rank's part).
+template <class Eval>
+void MpmSolver::map_at_midpoints(const Eval& eval, MaterialPoints& points,
+                                 const BoundaryConditions& bc, double dt) {
+  const size_t n = points.size();
+  const bool prescribed = !bc.point_velocities.empty();
   for (size_t p = 0; p < n; ++p) {
     Vec3 vel = remapped_velocity(eval(start_positions_[p]));
     if (prescribed) hold_prescribed(points, bc, p, vel);
@@ -1324,7 +1352,7 @@ void MpmSolver::move_from_midpoints(const Eval& eval, MaterialPoints& points,
   const Lanes8 keep_all_but_mass_and_momentum = {0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0};
   for (auto& r : sums_) r.lanes *= keep_all_but_mass_and_momentum;
   for (size_t p = 0; p < n; ++p) {
-    const auto& s = midpoint(p);
+    const auto& s = midpoint_stencil(eval, points, p);
     const double m = points.mass[p];
     const Vec3& v = points.v[p];
     const Lanes8 pm = {m, m * v[0], m * v[1], m * v[2], 0.0, 0.0, 0.0, 0.0};
@@ -1333,13 +1361,17 @@ void MpmSolver::move_from_midpoints(const Eval& eval, MaterialPoints& points,
       sums_[static_cast<size_t>(s.node[qq])].lanes += s.N[qq] * pm;
     }
   }
-  sum_shared(sums::kMass, 4);
-  nodal_velocities(bc, remap_velocity_);
-  impose_rigid(bc, remap_velocity_);
-  for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;
-  // The move from the start, with the remapped velocity at the midpoint.
+}
+
+// Its second half, once the midpoint sums are whole: each point moves a
+// whole step from its start with the grid velocity at its midpoint.
+template <class Eval>
+void MpmSolver::move_with_midpoint_velocity(const Eval& eval, MaterialPoints& points,
+                                            const BoundaryConditions& bc, double dt) {
+  const size_t n = points.size();
+  const bool prescribed = !bc.point_velocities.empty();
   for (size_t p = 0; p < n; ++p) {
-    Vec3 vel = remapped_velocity(midpoint(p));
+    Vec3 vel = remapped_velocity(midpoint_stencil(eval, points, p));
     if (prescribed) hold_prescribed(points, bc, p, vel);
     points.x[p] = start_positions_[p];
     move_point(points, p, vel, dt);

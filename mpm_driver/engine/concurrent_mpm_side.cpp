@@ -86,8 +86,12 @@ void ConcurrentMpmSide::map_back() {
 
 // The reactions belong to this step's point order, which the migration
 // changes.
+void ConcurrentMpmSide::map_at_midpoints() {
+  engine_.update_stress_and_map_midpoints(dt_);
+}
+
 void ConcurrentMpmSide::finish_step() {
-  engine_.update_stress_and_move(dt_);
+  engine_.move_from_midpoints(dt_);
   engine_.boundary_conditions().point_forces = {};
   reactions_.clear();
   engine_.migrate();

@@ -31,6 +31,7 @@ class ConcurrentMpmSide : public coupling::ContinuumSide {
   void update_nodes() override;
   [[nodiscard]] coupling::NodalRecords held_nodes() override;
   void map_back() override;
+  void map_at_midpoints() override;
   void finish_step() override;
 
   [[nodiscard]] MPI_Comm comm() const override { return engine_.comm(); }

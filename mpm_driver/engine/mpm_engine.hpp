@@ -42,6 +42,15 @@ class MpmEngine {
   void update_stress_and_move(double dt) {
     solver_->update_stress_and_move(model_.points, model_.bc, dt);
   }
+  // update_stress_and_move in the midpoint move's two halves, for a
+  // coupling scheme that adds another program's midpoint sums between them.
+  void update_stress_and_map_midpoints(double dt) {
+    solver_->update_stress_and_map_midpoints(model_.points, model_.bc, dt);
+    solver_->complete_midpoint_sums();
+  }
+  void move_from_midpoints(double dt) {
+    solver_->move_from_midpoints(model_.points, model_.bc, dt);
+  }
   void migrate();
 
   // What a checkpoint holds of the engine: each rank's points in the order

@@ -238,7 +238,7 @@ void ConcurrentMpmPart::run(StageContext& ctx) {
   const grid::GridPartition theirs(cp.grid, cp.periodic, remote);
   coupling::CrossProgramLink link(inter, part.side(), engine.partition(), theirs, part.band(),
                                   part.reach());
-  coupling::CouplingScheme scheme({&part.side()}, link, cp.interface, cp.fields());
+  coupling::CouplingScheme scheme({&part.side()}, link, cp.interface, cp.fields(), cp.move);
 
   coupling::ConcurrentProbes probes(ctx.comm(), cp, part.group_names(),
                                     0.5 * part.lattice_constant(), view_of(engine.points()));

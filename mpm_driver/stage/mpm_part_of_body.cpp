@@ -49,6 +49,7 @@ MpmModel MpmPartOfBody::model_of(const coupling::ConcurrentParams& cp,
   m.grid = cp.grid;
   m.periodic = cp.periodic;
   m.options.flip = cp.flip;
+  m.options.move = cp.move;
   m.options.units = grid::UnitSystem::metal();
   // The DPD part's nodal update skips only empty nodes; the shared nodes
   // must be updated alike.

@@ -48,8 +48,8 @@ std::map<std::int64_t, Row> advance(const YAML::Node& config, const std::string&
   const pbms::coupling::ConcurrentParams& cp = dpd.params();
   pbms::mpm::MpmPartOfBody mpm(MPI_COMM_SELF, cp, dpd.handover());
   pbms::coupling::InProcessLink link(dpd.side(), mpm.side());
-  pbms::coupling::CouplingScheme scheme({&dpd.side(), &mpm.side()}, link, cp.interface,
-                                        cp.fields());
+  pbms::coupling::CouplingScheme scheme({&dpd.side(), &mpm.side()}, link, cp.interface, cp.fields(),
+                                        cp.move);
   for (std::int64_t n = 1; n <= cp.steps; ++n) {
     dpd.ramp_grips(n);
     mpm.ramp_grips(n);

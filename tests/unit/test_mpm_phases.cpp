@@ -80,10 +80,15 @@ void add_each_others_sums(MpmSolver& a, MpmSolver& b, int first, int count) {
 
 }  // namespace
 
-TEST(MpmPhases, TwoSolversSummingAcrossEachOtherMatchOneSolver) {
+namespace {
+
+// Two solvers that add each other's sums between the phases against one
+// that holds every point, both with the point move `move`.
+void split_matches_one(PointMove move) {
   const grid::RegularGrid g({0, 0, 0}, 1.0, {8, 6, 6});
   SolverOptions opt;
   opt.flip = 0.95;
+  opt.move = move;
   const MaterialPoints all = body(g);
   opt.reference_point_mass = *std::min_element(all.mass.begin(), all.mass.end());
   const BoundaryConditions bc;
@@ -115,8 +120,13 @@ TEST(MpmPhases, TwoSolversSummingAcrossEachOtherMatchOneSolver) {
     left->complete_remap_sums();
     right->complete_remap_sums();
     add_each_others_sums(*left, *right, sums::kMomentum, 3);
-    left->update_stress_and_move(a, bc, dt);
-    right->update_stress_and_move(b, bc, dt);
+    left->update_stress_and_map_midpoints(a, bc, dt);
+    right->update_stress_and_map_midpoints(b, bc, dt);
+    left->complete_midpoint_sums();
+    right->complete_midpoint_sums();
+    if (move == PointMove::kMidpoint) add_each_others_sums(*left, *right, sums::kMass, 4);
+    left->move_from_midpoints(a, bc, dt);
+    right->move_from_midpoints(b, bc, dt);
   }
 
   // Ids index `one`; the split sets only changed the summation order.
@@ -144,6 +154,19 @@ TEST(MpmPhases, TwoSolversSummingAcrossEachOtherMatchOneSolver) {
   EXPECT_LE(dx, 1e-11 * 8.0);
   EXPECT_LE(dv, 1e-10 * vmax);
   EXPECT_LE(ds, 1e-10 * smax);
+}
+
+}  // namespace
+
+TEST(MpmPhases, TwoSolversSummingAcrossEachOtherMatchOneSolver) {
+  split_matches_one(PointMove::kStepStart);
+}
+
+// The midpoint move's second map (the points' mass and momentum at their
+// midpoints) summed across the two as well: the concurrent stage's
+// grid.move: midpoint.
+TEST(MpmPhases, TwoSolversMovingFromMidpointsMatchOneSolver) {
+  split_matches_one(PointMove::kMidpoint);
 }
 
 TEST(MpmPhases, APhaseOutOfOrderIsRefused) {

@@ -97,6 +97,8 @@ struct ConcurrentParams {
   grid::RegularGrid grid{{0.0, 0.0, 0.0}, 1.0, {1, 1, 1}};
   std::array<bool, 3> periodic{false, false, false};
   double flip = 1.0;
+  // How both programs move their particles and points (grid.move).
+  grid::PointMove move = grid::PointMove::kStepStart;
   // Extra reach of the interface band beyond the cells the two bodies
   // touch, Å: how far particles may travel from where they start.
   double band_margin = 0.0;

@@ -17,8 +17,11 @@ class CouplingScheme {
  public:
   // The sides this process runs (one or both) and the link between them;
   // all must outlive the scheme.
+  // `move` is both sides' grid::PointMove: with the midpoint move the
+  // sums of the map at the midpoints are added across the link too.
   CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link, InterfaceTreatment treatment,
-                 GridFields fields = GridFields::kShared);
+                 GridFields fields = GridFields::kShared,
+                 grid::PointMove move = grid::PointMove::kStepStart);
 
   // One step. Collective over both sides' ranks.
   void step();
@@ -38,6 +41,7 @@ class CouplingScheme {
   CouplingLink& link_;
   InterfaceTreatment treatment_;
   GridFields fields_;
+  grid::PointMove move_;
 };
 
 }  // namespace pbms::coupling

@@ -77,7 +77,13 @@ class GridSide {
   // then grid to points and the remapped momentum summed over this side's
   // ranks (s-7 to s-10).
   virtual void map_back() = 0;
-  // Nodal velocities, stresses, moves (s-11 to s-14); the step is done.
+  // Nodal velocities and stresses (s-11 to s-14) and, with the midpoint
+  // move, half a move and the mass and momentum at the midpoints summed
+  // over this side's ranks (the link then adds the other side's); with the
+  // step-start move the move itself.
+  virtual void map_at_midpoints() = 0;
+  // The midpoint move's move, from the start with the grid velocity at the
+  // midpoint; the step is done.
   virtual void finish_step() = 0;
   // GridFields::kFrictionlessContact, after map_to_grid: this side's mass
   // gradient (3 doubles per node of nodal_records()' nodes), and the

@@ -180,8 +180,20 @@ class MpmSolver {
   // under update-stress-first, the move (s-8).
   void map_to_points(MaterialPoints& points, const BoundaryConditions& bc, double dt);
   void complete_remap_sums();  // over this solver's ranks
-  // s-11 to s-14 and the move (s-8), update-stress-last.
+  // s-11 to s-14 and the move (s-8), update-stress-last: the three below
+  // in one.
   void update_stress_and_move(MaterialPoints& points, const BoundaryConditions& bc, double dt);
+  // The same in three, for a coupling scheme whose other program's points
+  // also move from their midpoints (PointMove::kMidpoint): the stress
+  // update and, with the midpoint move, half a move and the map of the
+  // points' mass and momentum at their midpoints; the sums of that map
+  // over this solver's ranks (another program's part is added after it);
+  // the move from the start with the grid velocity at the midpoint. With
+  // the step-start move the first does it all and the others do nothing.
+  void update_stress_and_map_midpoints(MaterialPoints& points, const BoundaryConditions& bc,
+                                       double dt);
+  void complete_midpoint_sums();
+  void move_from_midpoints(MaterialPoints& points, const BoundaryConditions& bc, double dt);
 
   // The nodal sums of this solver's patch, `stride` doubles per node in
   // patch().nodes' local order: lane 0 mass, 1-3 momentum, 4-6 force
@@ -298,12 +310,16 @@ class MpmSolver {
   template <class Eval>
   void stress_and_move(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
                        double dt, double move_dt);
-  // PointMove::kMidpoint's second half: the points stand at their
-  // midpoints; their momentum is mapped there, and each moves from
-  // start_positions_ by dt times the grid velocity at its midpoint.
   template <class Eval>
-  void move_from_midpoints(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
-                           double dt);
+  void map_at_midpoints(const Eval& eval, MaterialPoints& points, const BoundaryConditions& bc,
+                        double dt);
+  template <class Eval>
+  void move_with_midpoint_velocity(const Eval& eval, MaterialPoints& points,
+                                   const BoundaryConditions& bc, double dt);
+  template <class Eval>
+  auto midpoint_stencil(const Eval& eval, const MaterialPoints& points, size_t p) const;
+  template <class Stencil>
+  Vec3 remapped_velocity(const Stencil& s) const;
   void hold_rigid_nodes(const BoundaryConditions& bc, double dt);
   // The axes bc's prescribed-velocity entries hold at node i, as a sum of
   // 1 (x), 2 (y) and 4 (z).
@@ -408,6 +424,7 @@ class MpmSolver {
   std::vector<NodeLanes> kin_;
   std::vector<Vec3> velocity_, acceleration_, remap_velocity_, node_force_;
   std::vector<Vec3> start_positions_;  // PointMove::kMidpoint: where the move starts
+  bool midpoint_pending_ = false;      // mapped at the midpoints, not yet moved
   // SolverOptions::contact (contact_fields): per node.
   std::vector<double> mass_gradient_, other_sums_, other_gradient_;
   // Nodes another program holds this step (hold_nodes_of_others): local
