@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "pbms/analysis/baseline_covers.hpp"
 #include "pbms/config/axis_name.hpp"
 #include "pbms/error.hpp"
 #include "pbms/geometry/region_yaml.hpp"
@@ -14,16 +15,13 @@
 namespace pbms::coupling {
 namespace {
 
-// A baseline is subtracted sample by sample: it must cover this stage's
-// steps at the same step length and hold every slab the speeds time.
+// A baseline is subtracted sample by sample (analysis::baseline_covers)
+// and must hold every slab the speeds time.
 void check_baseline(const ConcurrentParams& c) {
   if (c.baseline.empty()) return;
   for (const auto& [side, columns] : c.baseline) {
     const auto t = columns.find("time");
-    const bool covers =
-        t != columns.end() && t->second.size() >= static_cast<std::size_t>(c.steps) + 1 &&
-        (c.steps == 0 || std::abs(t->second[1] - t->second[0] - c.time_step) <= 1e-9 * c.time_step);
-    if (!covers) {
+    if (t == columns.end() || !analysis::baseline_covers(t->second, c.steps, c.time_step)) {
       throw Error(fmt::format(
           "wave.baseline.{}: the baseline must be an earlier stage's {}_slabs table over at "
           "least this stage's {} steps of {} ps: run the baseline as long, with the same time_step",

@@ -19,6 +19,7 @@
 #include "engine/dpd_grid_step.hpp"
 #include "engine_checkpoint.hpp"
 #include "neck_probe.hpp"
+#include "pbms/analysis/baseline_covers.hpp"
 #include "pbms/driver/stage_checkpoints.hpp"
 #include "pbms/error.hpp"
 
@@ -202,18 +203,15 @@ void report_run(StageResults& r, const DpdEngine& engine, const DpdProbeSeries& 
   probes.report_table(r);
 }
 
-// A baseline is subtracted sample by sample: it must have been taken over
-// the same steps of the same length.
+// A baseline is subtracted sample by sample (analysis::baseline_covers).
 void check_baseline(const ImpactParams& impact, std::int64_t steps, double dt,
                     const std::string& stage) {
   if (!impact.baseline) return;
   const std::vector<double>& t = impact.baseline->time;
-  const bool same = t.size() == static_cast<std::size_t>(steps) + 1 &&
-                    (steps == 0 || std::abs(t[1] - t[0] - dt) <= 1e-9 * dt);
-  if (!same) {
+  if (!analysis::baseline_covers(t, steps, dt)) {
     throw Error(fmt::format(
         "stage '{}': impact.baseline has {} samples {} ps apart; this stage takes {} of {} ps: "
-        "run the baseline with the same steps and dt",
+        "run the baseline at least as long, with the same dt",
         stage, t.size(), t.size() > 1 ? t[1] - t[0] : 0.0, steps + 1, dt));
   }
 }
