@@ -18,6 +18,8 @@
 #   BENCH scaling_wait_fraction_<w>                 (the waiting part of a step)
 #   BENCH scaling_gas_exchange_bytes_per_particle_step (in a gas the band is
 #         the body's box: bytes a step per DPD particle of the cube)
+# PBMS_GRID_MOVE=step_start measures the step-start move instead of the
+# midpoint move (grid.move's default).
 set -euo pipefail
 ROOT="$1"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -26,7 +28,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 STEPS=1000
 
-/usr/bin/python3 - "$ROOT/configs/inclusion_in_gas.yaml" "$STEPS" > scaling.yaml <<'PY'
+/usr/bin/python3 - "$ROOT/configs/inclusion_in_gas.yaml" "$STEPS" "${PBMS_GRID_MOVE:-midpoint}" > scaling.yaml <<'PY'
 import sys
 import yaml
 steps = int(sys.argv[2])
@@ -57,6 +59,9 @@ gas = next(s for s in inclusion["stages"] if s.get("gas", {}).get("pressure") ==
 gas = dict(gas, name="cube_in_gas", steps=steps, particles_every=0)
 for key in ("volume",):
     gas.pop(key, None)
+gas["grid"] = dict(gas["grid"])
+for s in stages + [gas]:
+    s["grid"]["move"] = sys.argv[3]
 config = {"run": {"name": "scaling", "seed": 2026, "output": "runs"},
           "launch": {"dpd": 1, "mpm": 1},
           "materials": {"cu_cg": material, **{k: v for k, v in inclusion["materials"].items() if k != "cu_cg"}},

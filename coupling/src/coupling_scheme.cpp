@@ -9,13 +9,7 @@ namespace pbms::coupling {
 CouplingScheme::CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link,
                                InterfaceTreatment treatment, GridFields fields,
                                grid::PointMove move)
-    : sides_(std::move(sides)), link_(link), treatment_(treatment), fields_(fields), move_(move) {
-  if (move_ == grid::PointMove::kMidpoint && fields_ == GridFields::kFrictionlessContact) {
-    throw Error(
-        "concurrent: the midpoint move is not built for a gas in frictionless contact (each "
-        "side keeps its own velocity field); use grid.move: step_start");
-  }
-}
+    : sides_(std::move(sides)), link_(link), treatment_(treatment), fields_(fields), move_(move) {}
 
 void CouplingScheme::step() {
   if (treatment_ != InterfaceTreatment::kNone) link_.share_partners();
@@ -40,8 +34,12 @@ void CouplingScheme::step() {
     link_.sum_nodes(grid::sums::kMomentum, grid::sums::kVector);  // the remapped momentum
   }
   for (GridSide* s : sides_) s->map_at_midpoints();
-  if (move_ == grid::PointMove::kMidpoint) {
-    link_.sum_nodes(grid::sums::kMass, 1 + grid::sums::kVector);  // mass, momentum at midpoints
+  if (move_ == grid::PointMove::kMidpoint) {  // mass and momentum at the midpoints
+    if (contact) {
+      link_.exchange_nodes(grid::sums::kMass, 1 + grid::sums::kVector, false);
+    } else {
+      link_.sum_nodes(grid::sums::kMass, 1 + grid::sums::kVector);
+    }
   }
   for (GridSide* s : sides_) s->finish_step();
 }

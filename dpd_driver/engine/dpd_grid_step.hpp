@@ -64,8 +64,8 @@ struct DpdGridSettings {
   };
   std::vector<RigidGroup> rigid;
   // Where the particles take the grid velocity they move with
-  // (grid::PointMove). kMidpoint only on the engine's own grid: a shared
-  // grid's sums need the other program's part.
+  // (grid::PointMove). On a grid shared with another program, kMidpoint
+  // needs its midpoint sums completed across the link (CouplingScheme).
   grid::PointMove move = grid::PointMove::kStepStart;
   // The particles are one field of a frictionless contact with another
   // program's points, whose mass gives the surface (grid::ContactField).

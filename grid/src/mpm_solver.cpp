@@ -121,8 +121,8 @@ MpmSolver::MpmSolver(GridPatch patch, std::unique_ptr<ShapeFunction> shape,
   remap_velocity_.assign(n, {0.0, 0.0, 0.0});
   node_force_.assign(n, {0.0, 0.0, 0.0});
   if (opt_.contact != ContactField::kNone) {
-    if (opt_.stress_update != StressUpdate::kLast || opt_.move != PointMove::kStepStart) {
-      throw Error("a contact field takes update-stress-last and the step-start move");
+    if (opt_.stress_update != StressUpdate::kLast) {
+      throw Error("a contact field takes update-stress-last");
     }
     mass_gradient_.assign(3 * n, 0.0);
     other_gradient_.assign(3 * n, 0.0);
@@ -1304,6 +1304,10 @@ void MpmSolver::move_from_midpoints(MaterialPoints& points, const BoundaryCondit
                                     double dt) {
   if (!midpoint_pending_) return;
   midpoint_pending_ = false;
+  // The two fields meet again at the midpoints, along the normal of the
+  // step's start (the other field's midpoint mass and momentum are in
+  // other_sums_ by now).
+  if (opt_.contact != ContactField::kNone) contact_on_remap();
   nodal_velocities(bc, remap_velocity_);
   impose_rigid(bc, remap_velocity_);
   for (const OtherHold& h : others_held_) remap_velocity_[h.node][h.axis] = h.velocity;

@@ -9,8 +9,9 @@ source "$(dirname "$0")/lib.sh"
 # particle and point agrees: max |dx| <= 1e-11 of the body's length and
 # max |dv| <= 1e-10 of the largest speed, with the seed's interface
 # treatment and with the momentum-conserving one, a grip on each side
-# pulled on a velocity ramp; the same with the midpoint move on 1+1 ranks;
-# and, with the solvers swapped, the DPD flyer striking MPM points.
+# pulled on a velocity ramp, all with the midpoint move (grid.move's
+# default); the same with the step-start move on 1+1 ranks; and, with the
+# solvers swapped, the DPD flyer striking MPM points.
 CONFIG="$(dirname "$0")/configs/concurrent_small.yaml"
 MONO="$ROOT/build/bin/concurrent_monolithic"
 [ -x "$MONO" ] || fail "concurrent_monolithic is not built"
@@ -103,16 +104,13 @@ for interface in seed momentum_conserving; do
     compare "runs/$name" "mono_$interface.txt" || fail "$name differs from the monolithic run"
   done
 done
-# The midpoint move (grid.move: midpoint): each part maps its particles' or
-# points' mass and momentum again at their midpoints and the link sums that
-# map across the programs once more a step; 1+1 ranks (a midpoint past its
-# rank's box takes its weights at the box's face, the one change more ranks
-# make beyond round-off: docs/dpd-driver.md), momentum-conserving
-# interface, the grips on their ramps.
-name=split_midpoint_1_1
+# The step-start move (grid.move: step_start, what a gas in frictionless
+# contact needs): one map a step, no midpoint sums across the programs;
+# 1+1 ranks, momentum-conserving interface, the grips on their ramps.
+name=split_step_start_1_1
 sed "s/name: split_momentum_conserving_1_1/name: $name/;
-     s/cells: \[38, 7, 7\]}/cells: [38, 7, 7], move: midpoint}/" split_momentum_conserving_1_1.yaml > "$name.yaml"
-grep -q "move: midpoint" "$name.yaml" || fail "the midpoint move was not set"
+     s/cells: \[38, 7, 7\]}/cells: [38, 7, 7], move: step_start}/" split_momentum_conserving_1_1.yaml > "$name.yaml"
+grep -q "move: step_start" "$name.yaml" || fail "the step-start move was not set"
 "$PBMS" run "$name.yaml" > "$name.out" 2>&1 || { tail -20 "$name.out"; fail "$name failed"; }
 "$MONO" "runs/$name" impact "mono_$name.txt" || fail "concurrent_monolithic failed ($name)"
 compare "runs/$name" "mono_$name.txt" || fail "$name differs from the monolithic run"

@@ -9,7 +9,8 @@ source "$(dirname "$0")/lib.sh"
 #  - a rod of two materials in series: the concurrent rod's E is the series
 #    rule's, 1 / E = 0.5 / E_DPD + 0.5 / E_MPM (half its length each), from
 #    the same rod all DPD and all MPM: the interface neither softens nor
-#    stiffens it. Measured +0.10, -0.26, -0.17 % on seeds 2026-2028;
+#    stiffens it. Measured +0.10, -0.16, +0.02 % on seeds 2026-2028
+#    (midpoint move; -0.26 and -0.17 % for 2027-2028 with the step-start move);
 #  - the MPM continuum reads its own law: the same rod in mpm_run, its gauge
 #    (the middle third) against the hypoelastic law's E ln(1 + e) at the
 #    gauge's strains, recomputed here (as mpm_rod_law.sh does);
@@ -20,8 +21,8 @@ source "$(dirname "$0")/lib.sh"
 #  - the concurrent rod within 5 % of the all-DPD rod (seed fig. 5.12);
 #  - the concurrent stage's all-MPM rod against the same rod in mpm_run,
 #    same measure: the concurrent MPM part (points on DPD sites, handed
-#    over, held grips) runs as the MPM solver alone. Measured -0.17, -0.29,
-#    -0.14 % on seeds 2026-2028.
+#    over, held grips) runs as the MPM solver alone. Measured -0.13, -0.25,
+#    -0.10 % on seeds 2026-2028.
 "$PBMS" run "$(dirname "$0")/configs/concurrent_tension_small.yaml" > run.txt 2>&1 || { cat run.txt; fail "tension run"; }
 "$PY" - <<'PYEOF'
 from summary_checks import Checks, law_gauge_modulus, summary_values

@@ -6,16 +6,19 @@ export PBMS_NO_PLOTS=1  # checked by its numbers
 # the grid leaves out. The flyer's pulse is short (its 14.5 Å, a 0.65 ps
 # rise at the near slab); the grid's cells spread it, which moves the
 # first motion ahead.
-#  - h = 2 Å (default suite): the first-motion speed within 1 % of
-#    DPD-only's and the near slab's 10-90 % rise within 5 % of its rise
-#    (measured 2026-12-07: +0.1 to +0.2 %; 0.64-0.67 against 0.64-0.66 ps);
-#  - with `all` (validation) also h = 4 and 8 Å: the first-motion excess
+#  - h = 2 Å (default suite, seed 2026 alone): the first-motion speed
+#    within 1 % of DPD-only's and the near slab's 10-90 % rise within 5 %
+#    of its rise (measured 2026-12-07 on the three seeds: +0.1 to +0.2 %;
+#    0.64-0.67 against 0.64-0.66 ps);
+#  - with `all` (validation) the three seeds, and also h = 4 and 8 Å: the
+#    first-motion excess
 #    grows with h in every seed (+4.3 to +8.3 % at 4 Å, the config's cell,
 #    where the issue asks for 5 %; +10.2 to +18.9 % at 8 Å; the rise
 #    1.01-1.05 and 1.10-1.16 ps).
 SIZES="2.008333333333"
-[ "${1:-}" = all ] && SIZES="2.008333333333 4.016666666667 8.033333333333"
-for seed in 1 2 2026; do
+SEEDS="2026"
+[ "${1:-}" = all ] && SIZES="2.008333333333 4.016666666667 8.033333333333" && SEEDS="1 2 2026"
+for seed in $SEEDS; do
   for h in $SIZES; do
     name="s${seed}_h${h%%.*}"
     "$PY" - "$ROOT/configs/dpd_grid_impact.yaml" "$name" "$seed" "$h" > "$name.yaml" <<'PYEOF'
@@ -32,8 +35,9 @@ PYEOF
     "$PBMS" run "$name.yaml" > "$name.out" 2>&1 || { tail -20 "$name.out"; fail "$name failed"; }
   done
 done
-"$PY" - $SIZES <<'PYEOF' || fail "the grid's impact does not approach DPD-only's"
+SEEDS="$SEEDS" "$PY" - $SIZES <<'PYEOF' || fail "the grid's impact does not approach DPD-only's"
 import sys
+import os
 import h5py
 import numpy as np
 sizes = [float(h) for h in sys.argv[1:]]
@@ -44,7 +48,7 @@ def rise(f, stage):
     at = lambda frac: t[np.argmax(x >= frac * plateau)]
     return at(0.9) - at(0.1)
 bad = []
-for seed in (1, 2, 2026):
+for seed in map(int, os.environ["SEEDS"].split()):
     excess = []
     for h in sizes:
         with h5py.File(f"runs/s{seed}_h{int(h)}/results.h5", "r") as f:

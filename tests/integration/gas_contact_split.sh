@@ -3,7 +3,9 @@ export PBMS_NO_PLOTS=1  # checked by its numbers
 # A gas in frictionless contact with a body (gas.contact: frictionless),
 # across programs as in one process: the ball of gas_box.yaml in its gas
 # at 3 GPa for 200 steps, run by dpd_driver and mpm_driver on 1+1 and 2+2
-# ranks, against the same stage advanced in one process by
+# ranks with the midpoint move (the fields meet again at the midpoints) and
+# on 1+1 ranks with the step-start move, each against the same stage
+# advanced in one process by
 # concurrent_monolithic (an InProcessLink between the parts). A consistency
 # check of the exchange of each side's own nodal fields: every particle and
 # gas point agrees to max |dx| <= 1e-11 of the box and max |dv| <= 1e-10 of
@@ -15,10 +17,10 @@ export PBMS_NO_PLOTS=1  # checked by its numbers
 # without entering it (no gas point in its particles' convex hull).
 MONO="$ROOT/build/bin/concurrent_monolithic"
 [ -x "$MONO" ] || fail "concurrent_monolithic is not built"
-for ranks in "1 1" "2 2"; do
-  set -- $ranks
-  name="contact_$1_$2"
-  "$PY" - "$(dirname "$0")/configs/gas_box.yaml" "$name" "$1" "$2" > "$name.yaml" <<'PYEOF'
+for case in "midpoint 1 1" "midpoint 2 2" "step_start 1 1"; do
+  set -- $case
+  name="contact_$1_$2_$3"
+  "$PY" - "$(dirname "$0")/configs/gas_box.yaml" "$name" "$2" "$3" "$1" > "$name.yaml" <<'PYEOF'
 import sys
 import yaml
 import derived_config
@@ -28,12 +30,13 @@ config["launch"] = {"dpd": int(sys.argv[3]), "mpm": int(sys.argv[4])}
 ball, gas = config["stages"]
 ball["steps"] = 500
 gas["gas"].update({"contact": "frictionless", "settle_time": "0 ps"})
+gas["grid"]["move"] = sys.argv[5]
 gas.update({"steps": 200, "sample_every": 50, "particles_every": 200})
 yaml.safe_dump(config, sys.stdout, sort_keys=False)
 PYEOF
   "$PBMS" run "$name.yaml" > "$name.out" 2>&1 || { tail -20 "$name.out"; fail "$name failed"; }
-  [ -f mono.txt ] || "$MONO" "runs/$name" gas mono.txt || fail "concurrent_monolithic failed"
-  "$PY" - "runs/$name" mono.txt <<'PYEOF' || fail "$name misses its references"
+  [ -f "mono_$1.txt" ] || "$MONO" "runs/$name" gas "mono_$1.txt" || fail "concurrent_monolithic failed"
+  "$PY" - "runs/$name" "mono_$1.txt" <<'PYEOF' || fail "$name misses its references"
 import sys
 import h5py
 import numpy as np

@@ -37,6 +37,7 @@ struct ConcurrentBar {
   int grid_across = 7;   // grid cells across: lattice planes off the node planes
   bool all_dpd = false;  // the whole bar DPD (the all-DPD reference)
   bool ddmp = false;     // DDMP gradients for the MPM points
+  grid::PointMove move = grid::PointMove::kStepStart;  // both parts' (grid.move)
 
   [[nodiscard]] double h() const { return cells_across * kLattice / grid_across; }
   [[nodiscard]] double interface() const { return 0.5 * cells_x * kLattice; }
@@ -88,8 +89,9 @@ inline DpdPart dpd_part(MPI_Comm comm, const ConcurrentBar& bar) {
   s.skin = kSkin;
   DpdPart p;
   p.engine = std::make_unique<dpd::DpdEngine>(comm, c.box, dpd::cu_cg_morse(), s, std::move(mine));
-  p.grid = std::make_unique<dpd::DpdGridStep>(*p.engine, dpd::DpdGridSettings{bar.h(), 1.0, 4, {}},
-                                              bar.grid(), kPeriodic);
+  dpd::DpdGridSettings grid{bar.h(), 1.0, 4, {}};
+  grid.move = bar.move;
+  p.grid = std::make_unique<dpd::DpdGridStep>(*p.engine, grid, bar.grid(), kPeriodic);
   p.side = std::make_unique<dpd::ConcurrentDpdSide>(*p.engine, *p.grid, 0);
   return p;
 }
@@ -107,6 +109,7 @@ inline MpmPart mpm_part(MPI_Comm comm, const ConcurrentBar& bar) {
   model.options.units = grid::UnitSystem::metal();
   model.options.small_mass_fraction = 0.0;  // as the DPD side's grid step
   model.options.ddmp = model.options.ddmp_face_vanishing = bar.ddmp;
+  model.options.move = bar.move;
   const double volume = kLattice * kLattice * kLattice / 4.0;
   for (std::size_t i = 0; i < c.particles.size(); ++i) {
     if (bar.is_dpd(c.particles.x[i])) continue;

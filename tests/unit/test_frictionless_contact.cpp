@@ -77,11 +77,12 @@ MaterialPoints block(double x0, double x1, const Vec3& v) {
   return pts;
 }
 
-std::unique_ptr<MpmSolver> field(const RegularGrid& g, ContactField role) {
+std::unique_ptr<MpmSolver> field(const RegularGrid& g, ContactField role, PointMove move) {
   std::vector<std::unique_ptr<Material>> m;
   m.push_back(std::make_unique<StresslessParticle>());
   SolverOptions opt;
   opt.contact = role;
+  opt.move = move;
   opt.small_mass_fraction = 0.0;
   return std::make_unique<MpmSolver>(g, ShapeFunctionRegistry::create("linear"), std::move(m), opt);
 }
@@ -103,6 +104,8 @@ void copy_to_other(MpmSolver& from, MpmSolver& to, int first, int count) {
 struct Meeting {
   Vec3 gas_velocity_at_plane{};  // at an inner node of the plane x = 3
   Vec3 body_velocity_at_plane{};
+  Vec3 gas_move_velocity_at_plane{};  // what the points moved with there
+  Vec3 body_move_velocity_at_plane{};
   Vec3 momentum_before{}, momentum_after{};
 };
 
@@ -114,12 +117,25 @@ Vec3 momentum(const MaterialPoints& a, const MaterialPoints& b) {
   return p;
 }
 
+// The move's phases, with the link's exchange of the midpoint sums.
+void move_both(MpmSolver& gas, MaterialPoints& pg, MpmSolver& body, MaterialPoints& pb,
+               const BoundaryConditions& bc, double dt) {
+  gas.update_stress_and_map_midpoints(pg, bc, dt);
+  body.update_stress_and_map_midpoints(pb, bc, dt);
+  gas.complete_midpoint_sums();
+  body.complete_midpoint_sums();
+  copy_to_other(gas, body, sums::kMass, 4);
+  copy_to_other(body, gas, sums::kMass, 4);
+  gas.move_from_midpoints(pg, bc, dt);
+  body.move_from_midpoints(pb, bc, dt);
+}
+
 // A gas block in cells x in [1, 3) moving at `v` next to a body block at
 // rest in [3, 5): they share the node plane x = 3. One step.
-Meeting meet(const Vec3& v) {
+Meeting meet(const Vec3& v, PointMove move = PointMove::kStepStart) {
   const RegularGrid g({0, 0, 0}, 1.0, {6, 4, 4});
-  auto gas = field(g, ContactField::kSurfaceFromOwnMass);
-  auto body = field(g, ContactField::kSurfaceFromOtherMass);
+  auto gas = field(g, ContactField::kSurfaceFromOwnMass, move);
+  auto body = field(g, ContactField::kSurfaceFromOtherMass, move);
   MaterialPoints pg = block(1, 3, v), pb = block(3, 5, {0.0, 0.0, 0.0});
   const BoundaryConditions bc;
   const double dt = 0.1;
@@ -144,8 +160,9 @@ Meeting meet(const Vec3& v) {
   body->complete_remap_sums();
   copy_to_other(*gas, *body, sums::kMomentum, 3);
   copy_to_other(*body, *gas, sums::kMomentum, 3);
-  gas->update_stress_and_move(pg, bc, dt);
-  body->update_stress_and_move(pb, bc, dt);
+  move_both(*gas, pg, *body, pb, bc, dt);
+  out.gas_move_velocity_at_plane = gas->move_velocity(node);
+  out.body_move_velocity_at_plane = body->move_velocity(node);
   out.momentum_after = momentum(pg, pb);
   return out;
 }
@@ -175,5 +192,22 @@ TEST(FrictionlessContact, AGasMovingAwayFromABodyIsLeftAlone) {
   EXPECT_EQ(m.body_velocity_at_plane[0], 0.0);
   for (std::size_t c = 0; c < 3; ++c) {
     EXPECT_DOUBLE_EQ(m.momentum_after[c], m.momentum_before[c]) << "axis " << c;
+  }
+}
+
+// With the midpoint move the fields meet again where the points' midpoints
+// map: at the shared plane both move with one velocity along the normal,
+// the gas keeps sliding across, and the momentum is kept to round-off.
+TEST(FrictionlessContact, AtTheMidpointsTheGasStillMeetsTheBody) {
+  const Meeting m = meet({1.0, 0.5, 0.0}, PointMove::kMidpoint);
+  const Vec3& vg = m.gas_move_velocity_at_plane;
+  const Vec3& vb = m.body_move_velocity_at_plane;
+  EXPECT_GT(vb[0], 0.1);
+  EXPECT_LT(vg[0], 0.9);  // held back from its own 1
+  EXPECT_NEAR(vg[0], vb[0], 1e-12);
+  EXPECT_GT(vg[1], 0.4);  // still sliding
+  EXPECT_NEAR(vb[1], 0.0, 1e-12);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_NEAR(m.momentum_after[c], m.momentum_before[c], 1e-12 * 256.0) << "axis " << c;
   }
 }

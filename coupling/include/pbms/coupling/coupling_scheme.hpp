@@ -18,7 +18,8 @@ class CouplingScheme {
   // The sides this process runs (one or both) and the link between them;
   // all must outlive the scheme.
   // `move` is both sides' grid::PointMove: with the midpoint move the
-  // sums of the map at the midpoints are added across the link too.
+  // map at the midpoints crosses the link too, summed (one field) or, in
+  // frictionless contact, each side's to the other.
   CouplingScheme(std::vector<GridSide*> sides, CouplingLink& link, InterfaceTreatment treatment,
                  GridFields fields = GridFields::kShared,
                  grid::PointMove move = grid::PointMove::kStepStart);

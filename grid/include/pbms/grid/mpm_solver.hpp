@@ -273,6 +273,9 @@ class MpmSolver {
   // mass and the velocity of the momentum update (s-6).
   [[nodiscard]] double nodal_mass(size_t local) const { return sums_[local].lanes[sums::kMass]; }
   [[nodiscard]] const Vec3& nodal_velocity(size_t local) const { return velocity_[local]; }
+  // The grid velocity the points last moved with at a node: the remap's,
+  // or with PointMove::kMidpoint the midpoints'.
+  [[nodiscard]] const Vec3& move_velocity(size_t local) const { return remap_velocity_[local]; }
   // Internal plus external nodal force of the last step, eV/Å.
   [[nodiscard]] const Vec3& nodal_force(size_t local) const { return node_force_[local]; }
 
