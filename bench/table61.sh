@@ -14,6 +14,8 @@
 #   BENCH table61_speedup_vs_lammps               (LAMMPS CPU over PBMS CPU)
 #   BENCH table61_peak_rss_mb_<program>           (each program's largest rank)
 # The coupler's CPU is not counted: it waits on the drivers' messages.
+# PBMS_GRID_MOVE=step_start runs the step-start move instead of the midpoint
+# move (grid.move's default).
 set -euo pipefail
 ROOT="$1"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -24,7 +26,7 @@ cd "$work"
 PBMS_PS=10
 MD_PS=2
 
-PYTHONPATH="$ROOT/tests/integration" /usr/bin/python3 - "$ROOT/configs/sintering.yaml" "$PBMS_PS" > pair.yaml <<'PY'
+PYTHONPATH="$ROOT/tests/integration" /usr/bin/python3 - "$ROOT/configs/sintering.yaml" "$PBMS_PS" "${PBMS_GRID_MOVE:-midpoint}" > pair.yaml <<'PY'
 import sys
 import yaml
 import derived_config
@@ -36,7 +38,8 @@ for s in config["stages"]:
     if s["name"] == "pair_1GPa":
         # Table 6.1's model: the seed's grid and gas lattice of a_cg (the
         # config's own grid of a_cg/2 holds 224,444 gas points).
-        s["grid"] = {"origin": [-3.615] * 3, "cell_size": 7.23, "cells": [31, 31, 31]}
+        s["grid"] = {"origin": [-3.615] * 3, "cell_size": 7.23, "cells": [31, 31, 31],
+                     "move": sys.argv[3]}
         s["gas"]["spacing"] = 7.23
         s["steps"] = int(round(float(sys.argv[2]) / 0.01))
         s["particles_every"] = 0
