@@ -92,6 +92,11 @@ std::string difference_at(const YAML::Node& a, const YAML::Node& b, const std::s
     return fmt::format("{}: {} in the earlier run, {} now", path.empty() ? "<document>" : path,
                        scalar_text(a), scalar_text(b));
   };
+  // A key the one config has and the other lacks reads as a node that
+  // yaml-cpp marks invalid; its Type() would throw instead of naming it.
+  if (!a.IsDefined() || !b.IsDefined()) {
+    return a.IsDefined() == b.IsDefined() ? std::string() : describe();
+  }
   if (a.Type() != b.Type()) return describe();
   if (a.IsScalar()) return a.Scalar() == b.Scalar() ? std::string() : describe();
   if (a.IsSequence()) {
@@ -114,14 +119,15 @@ std::string difference_at(const YAML::Node& a, const YAML::Node& b, const std::s
   for (const auto& kv : a) {
     const std::string key = kv.first.Scalar();
     if (skipped(key)) continue;
-    auto d = difference_at(kv.second, b[key], path.empty() ? key : path + "." + key);
+    auto d = difference_at(kv.second, b[key], path.empty() ? key : fmt::format("{}.{}", path, key));
     if (!d.empty()) return d;
   }
   for (const auto& kv : b) {
     const std::string key = kv.first.Scalar();
     if (skipped(key)) continue;
     if (!a[key])
-      return difference_at(YAML::Node(), kv.second, path.empty() ? key : path + "." + key);
+      return difference_at(YAML::Node(), kv.second,
+                           path.empty() ? key : fmt::format("{}.{}", path, key));
   }
   return {};
 }
