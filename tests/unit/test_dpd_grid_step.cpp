@@ -188,8 +188,12 @@ TEST(DpdGridStep, MidpointMoveKeepsTheEnergyWhereParticlesShareNodes) {
   constexpr int kSteps = 1000;
   DpdGridSettings midpoint{kLattice / 2.0, 1.0, 4, {}};
   midpoint.move = grid::PointMove::kMidpoint;
+  // Over 1,000 steps both drifts are the least-squares slope's own
+  // scatter (DPD-only's reads 0.00001 to 0.00099 eV by seed), so a seed
+  // alone says little: twelve seeds compare the two spreads.
+  constexpr unsigned kSeeds = 12;
   double dpd_squares = 0.0, moved_squares = 0.0;
-  for (const unsigned seed : {7U, 8U, 9U}) {
+  for (unsigned seed = 1; seed <= kSeeds; ++seed) {
     auto reference = nve_crystal(298.0, seed, 0.01);
     const double dpd = drift(energy_series(*reference, nullptr, kSteps));
     auto engine = nve_crystal(298.0, seed, 0.01);
@@ -205,8 +209,9 @@ TEST(DpdGridStep, MidpointMoveKeepsTheEnergyWhereParticlesShareNodes) {
     const auto p = momentum(*engine);
     for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(p[a] - p0[a]), 1e-9) << seed;
   }
-  const double dpd_rms = std::sqrt(dpd_squares / 3.0), moved_rms = std::sqrt(moved_squares / 3.0);
-  std::printf("rms drift over the three seeds: DPD-only %.5f eV, grid h = a/2 midpoint %.5f eV\n",
+  const double dpd_rms = std::sqrt(dpd_squares / kSeeds);
+  const double moved_rms = std::sqrt(moved_squares / kSeeds);
+  std::printf("rms drift over %u seeds: DPD-only %.5f eV, grid h = a/2 midpoint %.5f eV\n", kSeeds,
               dpd_rms, moved_rms);
   EXPECT_LE(moved_rms, 2.0 * dpd_rms);
   std::array<double, 2> spread{};
