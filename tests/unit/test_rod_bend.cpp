@@ -42,3 +42,15 @@ TEST(RodBend, EmptySlabsAreSkipped) {
   EXPECT_NEAR(rod_bend(s), 0.0, 1e-12);
   EXPECT_EQ(rod_bend({s[0], s[1]}), 0.0);
 }
+
+// A rough end face leaves a few particles in a slab past the last whole
+// one; their centroid, off the axis, must not tilt the chord.
+TEST(RodBend, APartialEndSlabIsLeftOut) {
+  auto s = slabs_along([](double z) { return 0.2 * z; }, 19, 200.0);
+  const double z = 7.23 * 19;
+  s.push_back({4.0, 4.0 * (0.2 * z - 11.0), 4.0 * (1.5 + 14.0), 4.0 * z});
+  EXPECT_NEAR(rod_bend(s), 0.0, 1e-12);
+  // A slab with half the others' members still counts.
+  s.back() = {100.0, 100.0 * (0.2 * z + 3.0), 100.0 * 1.5, 100.0 * z};
+  EXPECT_GT(rod_bend(s), 1.0);
+}
