@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <filesystem>
 
 #include "pbms/io/h5md_writer.hpp"
@@ -83,6 +85,11 @@ TEST(H5md, WritesReadableTrajectory) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
+  // ctest runs each test in a process of its own, a singleton that needs no
+  // network: Open MPI's UCX layer would take 0.22 s of its 0.35 s start,
+  // over the suite's 400 tests 90 s. (gtest_discover_tests splits an
+  // ENVIRONMENT list, so it is set here.)
+  setenv("OMPI_MCA_pml", "ob1", /*overwrite=*/0);
   MPI_Init(&argc, &argv);
   const int rc = RUN_ALL_TESTS();
   MPI_Finalize();
