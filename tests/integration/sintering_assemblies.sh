@@ -29,7 +29,6 @@ if sys.argv[2] != "all":
     # The box cut by whole cells: 15 off x's top, the bodies moved 15 down y
     # and 15 more off its top, 5 off z's top (the interface band must stay
     # off the walls).
-    h = 3.615
     cut = {0: (0, 15), 1: (15, 15), 2: (0, 5)}
     for s in config["stages"]:
         s["steps"] = 1000 if s["kind"] != "concurrent" else 400
@@ -38,17 +37,8 @@ if sys.argv[2] != "all":
         s["neck_stable_time"] = "2 ps"
         s["particles_every"] = 200
         s["gas"]["settle_time"] = "2 ps"
-        for a, (down, top) in cut.items():
-            s["box"]["hi"][a] -= (down + top) * h
-            s["grid"]["cells"][a] -= down + top
-            for piece in s["initial"]["pieces"]:
-                piece["shift"][a] -= down * h
-            for group in s["groups"]:
-                region = group["region"]
-                if region["style"] == "sphere":
-                    region["centre"][a] -= down * h
-                elif a < 2:
-                    region["centre"][a] -= down * h
+        for a, (below, above) in cut.items():
+            derived_config.cut_box(s, a, below, above)
 yaml.safe_dump(config, sys.stdout, sort_keys=False)
 PYEOF
 "$PBMS" run assemblies.yaml > run.out 2>&1 || { tail -30 run.out; fail "the run failed"; }

@@ -28,7 +28,6 @@ config["stages"] = [copy.deepcopy(s) for s in config["stages"] if s["name"] in (
 # The box 20 a_cg across the line of centres instead of 30 (the spheres
 # and the line of centres kept, 36.15 Å nearer the walls on y and z): the
 # gas in 4/9 of the volume, the run in 45 s instead of 80.
-shrink = 36.15
 for s in config["stages"]:
     s["steps"] = 800 if s["name"] == "pair_1GPa" else 1000
     if s["name"] == "sphere":
@@ -36,12 +35,7 @@ for s in config["stages"]:
     s["neck_stable_time"] = "3 ps"
     s["particles_every"] = 0
     for a in (1, 2):
-        s["box"]["hi"][a] -= 2 * shrink
-        s["grid"]["cells"][a] -= round(2 * shrink / s["grid"]["cell_size"])
-        for piece in s["initial"]["pieces"]:
-            piece["shift"][a] -= shrink
-        for group in s["groups"]:
-            group["region"]["centre"][a] -= shrink
+        derived_config.cut_box(s, a, 10, 10)
 yaml.safe_dump(config, sys.stdout, sort_keys=False)
 PYEOF
 "$PBMS" run sintering.yaml > run.out 2>&1 || { tail -30 run.out; fail "the run failed"; }
