@@ -1,67 +1,69 @@
 source "$(dirname "$0")/lib.sh"
 # The copper cube in a confining gas (seed §6.2.1, issue 31): the gas of
-# configs/inclusion_in_gas.yaml around the cube, at 1 atm (V0), 1 and 5 GPa.
+# configs/inclusion_in_gas.yaml around the cube, at 1 atm (V0) and 5 GPa
+# (the whole config, with the argument `all`: also 0.01, 1 and 3 GPa).
 # Each holds against references the program did not make:
 #  - the seed's counts: 4,631 DPD particles in the cube, 7,930 gas points
 #    (21³ - 11³);
 #  - the gas pressure reached away from the cube, within 5 % of the target
-#    over 10-20 ps (the issue's tolerance);
-#  - the cube's V/V0 at 1 GPa within 1 % of the bulk isotherm of the same
-#    DPD potential (dpd_isotherm, a periodic crystal with no gas and no grid),
-#    its edges measured along the cube's own axes as it turns; seeds
-#    2026-2028 of the whole config: -0.22 % each (-0.24 % each when the
-#    gas shared the copper's velocity, before 2026-12-07);
+#    over 10-20 ps (the issue's tolerance; 10-15 ps in the default test's
+#    shorter stages);
+#  - the cube's V/V0 at 5 GPa (all: 1, 3, 5) within 1 % of the bulk isotherm of the
+#    same DPD potential (dpd_isotherm, a periodic crystal with no gas and
+#    no grid), its edges measured along the cube's own axes as it turns;
+#    seeds 2026-2028 of the whole config (2026-12-08, the surface-fitted
+#    Sutton-Chen copper): -0.04 to -0.05 % at 1 GPa and -0.22 to -0.32 %
+#    at 5 GPa. With the chapter's Morse model (until 2026-12-08) the faces'
+#    relaxation, pressed back by the gas, put 5 GPa at -1.14 to -1.17 %,
+#    and only 1 GPa (and 3 GPa in validation) was asserted;
 #  - the cube's turn, which a gas of even pressure cannot drive: within 1°
-#    of where the stage found it (seeds 2026-2028: +0.01 to +0.45°; 4.9°
+#    of where the stage found it (seeds 2026-2028: -0.54 to +0.70°; 4.9°
 #    at 5 GPa when the gas shared the copper's velocity);
 #  - the body's mass constant and its momentum, walls' impulse counted,
 #    conserved to round-off (1e-12 of M c; measured ~1e-16);
 #  - the DPD part at 298 K within 3 % at every pressure, the thermostat's
-#    target (seeds 2026-2028 of the whole config: 297.8-298.4 K, 304.9 K
+#    target (seeds 2026-2028 of the whole config: 296.5-297.7 K, 305.7 K
 #    for 2028 at 5 GPa). Before 2026-12-07 the gas shared the copper's
 #    nodal velocity and heated its surface plane at 5 GPa past what the
 #    thermostat takes out (352-377 K): asserted up to 1 GPa only then;
 #  - the crystal inside the cube squeezed as the bulk crystal: V/V0 of its
 #    interior (the middle 11 of 21 planes along each axis, 665 sites), the
 #    determinant of the affine map from their mean sites at 1 atm to each
-#    H5MD frame over 10-20 ps, within 1 % of the bulk DPD isotherm at 1
-#    and 5 GPa (seeds 2026-2028: -0.00 to -0.02 % and -0.26 to -0.27 %).
-#    The edges, which the seed's V and the checks above use, also carry the
-#    faces' outward relaxation (the outermost plane gap 3.80 Å at 1 atm
-#    against 3.61 inside), which the gas presses back (3.64 Å at 5 GPa):
-#    that is why the cube's V/V0 by its edges falls 1.1 % below the bulk's
-#    at 5 GPa (docs/chapter6.md);
+#    H5MD frame over 10-20 ps, within 1 % of the bulk DPD isotherm at 5 GPa
+#    (all: 1, 3, 5; seeds 2026-2028 of the whole config: +0.10 to +0.14,
+#    +0.14 to +0.22 and +0.21 to +0.37 %);
 #  - fig. 6.4's plot written.
 # With the argument `all` (the validation test) the whole config runs, EAM
 # copper's MD isotherm included: V/V0 also holds within 1 % of the bulk DPD
 # isotherm at 3 GPa and within 1.5 % of MD's at 1, 3 and 5 GPa (seeds
-# 2026-2028: -0.67 to -0.68 % and -0.20 to -1.10 %). At 5 GPa the cube is
-# 1.14-1.17 % below the bulk DPD isotherm, outside the issue's 1 %: printed,
-# not asserted (docs/chapter6.md).
+# 2026-2028: -0.17 to -0.20 % and -0.05 to -0.20 %).
 CONFIG="$ROOT/configs/inclusion_in_gas.yaml"
 ALL=0
 [ "${1:-}" = all ] && ALL=1
-if [ "$ALL" = 1 ]; then
-  sed "s|run: {name: inclusion_in_gas, seed: 2026}|run: {name: inclusion, seed: 2026, output: runs}|" \
-    "$CONFIG" > inclusion.yaml
-else
-  "$PY" - "$CONFIG" > inclusion.yaml <<'PYEOF'
+"$PY" - "$CONFIG" "$ALL" > inclusion.yaml <<'PYEOF'
 import sys
 import yaml
-config = yaml.safe_load(open(sys.argv[1]))
+import derived_config
+config = derived_config.load(sys.argv[1])
 config["run"] = {"name": "inclusion", "seed": 2026, "output": "runs"}
+if sys.argv[2] == "1":
+    yaml.safe_dump(config, sys.stdout, sort_keys=False)
+    sys.exit(0)
 config["launch"] = {"dpd": 1, "mpm": 1}
 del config["materials"]["cu_mishin"]
-keep = {"dpd_isotherm", "cube", "gas_1atm", "gas_1GPa", "gas_5GPa"}
+keep = {"dpd_isotherm", "cube", "gas_1atm", "gas_5GPa"}
 config["stages"] = [s for s in config["stages"] if s["name"] in keep]
 for s in config["stages"]:
     if s["name"] == "dpd_isotherm":
-        s["pressures"] = ["0.0001 GPa", "1 GPa", "5 GPa"]
+        s["pressures"] = ["0.0001 GPa", "5 GPa"]
     if s["name"] == "cube":
         s["steps"] = 2000
+    # 15 ps in the gas, the last 5 sampled (the whole config: 20 ps, the
+    # last 10): the surface-fitted model costs twice the Morse model's step.
+    if s["name"].startswith("gas_"):
+        s["steps"] = 1500
 yaml.safe_dump(config, sys.stdout, sort_keys=False)
 PYEOF
-fi
 "$PBMS" run inclusion.yaml > run.out 2>&1 || { tail -30 run.out; fail "the run failed"; }
 "$PY" - runs/inclusion "$ALL" <<'PYEOF' || fail "the cube in the gas misses its references"
 import sys
@@ -79,7 +81,7 @@ with h5py.File(f"{run}/results.h5", "r") as f:
         k = int(np.argmin(np.abs(p - pressure_gpa)))
         assert abs(p[k] - pressure_gpa) < 0.05, (stage, p)
         return t["volume_ratio"][k]
-    stages = ["gas_1atm", "gas_1GPa", "gas_5GPa"] + (["gas_0.01GPa", "gas_3GPa"] if everything else [])
+    stages = ["gas_1atm", "gas_5GPa"] + (["gas_0.01GPa", "gas_1GPa", "gas_3GPa"] if everything else [])
     for s in stages:
         target = scalar(s, "gas_pressure_target")
         reached = scalar(s, "gas_pressure")
@@ -109,7 +111,7 @@ with h5py.File(f"{run}/results.h5", "r") as f:
         if target >= 0.5:
             dpd = bulk("dpd_isotherm", target)
             print(f"  bulk DPD {dpd:.5f} ({100 * (ratio / dpd - 1.0):+.2f} %)")
-        if 0.5 <= target < 4.0 and (target < 2.0 or everything):
+        if target >= 0.5:
             if abs(ratio / dpd - 1.0) > 0.01:
                 bad.append(f"{s}: V/V0 {ratio:.5f} more than 1 % off the bulk DPD {dpd:.5f}")
         if target >= 0.5 and everything:
@@ -134,7 +136,7 @@ centre = reference.mean(axis=0)
 inner = np.max(np.abs(reference - centre), axis=1) < 20.0
 basis = np.c_[reference[inner] - centre, np.ones(int(inner.sum()))]
 with h5py.File(f"{run}/results.h5", "r") as f:
-    for s in ("gas_1GPa", "gas_3GPa", "gas_5GPa") if everything else ("gas_1GPa", "gas_5GPa"):
+    for s in ("gas_1GPa", "gas_3GPa", "gas_5GPa") if everything else ("gas_5GPa",):
         stage_ids, current = positions(s)
         assert np.array_equal(stage_ids, ids)
         # The interior's deformation from 1 atm: the affine map fitted to its
@@ -165,6 +167,7 @@ config["run"]["name"] = "unstable"
 stage = next(s for s in config["stages"] if s["name"] == "gas_5GPa")
 stage["gas"]["density"] = "0.001 g/cm^3"
 stage.pop("volume")
+next(s for s in config["stages"] if s["name"] == "cube")["steps"] = 100
 config["stages"] = [s for s in config["stages"] if s["name"] in ("cube", "gas_5GPa")]
 yaml.safe_dump(config, sys.stdout, sort_keys=False)
 PYEOF
