@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "pbms/analysis/rod_bend.hpp"
 #include "pbms/error.hpp"
 #include "pbms/mpi/comm.hpp"
+#include "pbms/mpi/sorted_rows.hpp"
 
 namespace pbms::dpd {
 
@@ -25,18 +27,47 @@ RodProbe::RodProbe(MPI_Comm comm, coupling::RodBend spec, std::uint32_t mask, do
   mpi::check(MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_DOUBLE, MPI_MIN, comm_),
              "MPI_Allreduce (rod extent)");
   if (!std::isfinite(range[0])) throw StageFailure("rod '" + spec_.name + "': its group is empty");
-  // Slabs of a, the first centred on the rod's lowest plane.
-  lo_ = range[0] - 0.5 * a_;
+  // Slabs of a along a <100> axis hold two whole planes each (planes a/2
+  // apart): their bounds fall midway between planes, where thermal motion
+  // does not carry a particle across.
+  lo_ = range[0] - 0.25 * a_;
   slabs_ = static_cast<std::size_t>(std::floor((-range[1] - lo_) / a_)) + 1;
+  assign_slabs(now);
 }
 
-void RodProbe::sample(double t, const coupling::ParticleView& now) {
+// Each rank keeps the whole rod's (id, slab) pairs: particles change rank
+// as they move, and a rod is thousands of particles.
+void RodProbe::assign_slabs(const coupling::ParticleView& now) {
   const auto axis = static_cast<std::size_t>(spec_.axis);
-  std::vector<std::array<double, 4>> sums(slabs_, {0.0, 0.0, 0.0, 0.0});
+  std::vector<double> mine;  // rows of (id, slab)
   for (std::size_t i = 0; i < now.count; ++i) {
     if ((now.groups[i] & mask_) == 0U) continue;
     const double k = std::floor((now.x[i][axis] - lo_) / a_);
-    const auto s = static_cast<std::size_t>(std::clamp(k, 0.0, static_cast<double>(slabs_ - 1)));
+    mine.push_back(static_cast<double>(now.id[i]));
+    mine.push_back(std::clamp(k, 0.0, static_cast<double>(slabs_ - 1)));
+  }
+  const auto all = mpi::sorted_rows(comm_, mine, 2, mpi::RowsTo::kEveryRank);
+  ids_.clear();
+  slab_of_.clear();
+  for (std::size_t j = 0; j + 1 < all.size(); j += 2) {
+    ids_.push_back(static_cast<std::int64_t>(all[j]));
+    slab_of_.push_back(static_cast<std::uint32_t>(all[j + 1]));
+  }
+}
+
+std::optional<std::size_t> RodProbe::slab_of(std::int64_t id) const {
+  const auto it = std::lower_bound(ids_.begin(), ids_.end(), id);
+  if (it == ids_.end() || *it != id) return std::nullopt;
+  return slab_of_[static_cast<std::size_t>(it - ids_.begin())];
+}
+
+void RodProbe::sample(double t, const coupling::ParticleView& now) {
+  std::vector<std::array<double, 4>> sums(slabs_, {0.0, 0.0, 0.0, 0.0});
+  for (std::size_t i = 0; i < now.count; ++i) {
+    if ((now.groups[i] & mask_) == 0U) continue;
+    const auto slab = slab_of(now.id[i]);
+    if (!slab) continue;
+    const std::size_t s = *slab;
     sums[s][0] += 1.0;
     for (std::size_t c = 0; c < 3; ++c) sums[s][1 + c] += now.x[i][c];
   }
@@ -58,11 +89,25 @@ void RodProbe::report(StageResults& r) const {
 void RodProbe::save(CheckpointArchive& a) const {
   a.put("rod_" + spec_.name + "/time", time_);
   a.put("rod_" + spec_.name + "/bend", bend_);
+  // Ids as doubles: exact below 2^53.
+  a.put("rod_" + spec_.name + "/ids", std::vector<double>(ids_.begin(), ids_.end()));
+  a.put("rod_" + spec_.name + "/slabs", std::vector<double>(slab_of_.begin(), slab_of_.end()));
 }
 
 void RodProbe::load(const CheckpointArchive& a) {
   time_ = a.get("rod_" + spec_.name + "/time");
   bend_ = a.get("rod_" + spec_.name + "/bend");
+  // A checkpoint from before the slabs were kept: they stay as the resumed
+  // positions put them.
+  if (!a.has("rod_" + spec_.name + "/ids")) return;
+  const auto& ids = a.get("rod_" + spec_.name + "/ids");
+  const auto& slabs = a.get("rod_" + spec_.name + "/slabs");
+  ids_.assign(ids.size(), 0);
+  slab_of_.assign(slabs.size(), 0U);
+  std::transform(ids.begin(), ids.end(), ids_.begin(),
+                 [](double v) { return static_cast<std::int64_t>(v); });
+  std::transform(slabs.begin(), slabs.end(), slab_of_.begin(),
+                 [](double v) { return static_cast<std::uint32_t>(v); });
 }
 
 }  // namespace pbms::dpd

@@ -2,11 +2,15 @@
 // the seed's "the rod bends" as a number, the largest lateral deflection of
 // its centre line from the chord between its ends. Slabs one lattice
 // constant thick along the rod's axis, over the rod's extent at the start.
+// A particle stays in the slab it started in: binned by where it is now, an
+// end slab gained and lost the particles that necks draw along the axis,
+// and its centroid jumped by several ångströms between samples.
 #pragma once
 
 #include <mpi.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "pbms/coupling/concurrent_params.hpp"
@@ -19,7 +23,7 @@ namespace pbms::dpd {
 class RodProbe {
  public:
   // Collective. `mask`: the rod's group; `a`: the lattice constant; `now`:
-  // this rank's particles at the start.
+  // this rank's particles at the start, which fix each particle's slab.
   RodProbe(MPI_Comm comm, coupling::RodBend spec, std::uint32_t mask, double a,
            const coupling::ParticleView& now);
 
@@ -32,11 +36,17 @@ class RodProbe {
   void load(const CheckpointArchive& a);
 
  private:
+  void assign_slabs(const coupling::ParticleView& now);
+  [[nodiscard]] std::optional<std::size_t> slab_of(std::int64_t id) const;
+
   MPI_Comm comm_;
   coupling::RodBend spec_;
   std::uint32_t mask_;
   double a_, lo_ = 0.0;
   std::size_t slabs_ = 0;
+  // Every rod particle's id, sorted, and the slab it started in.
+  std::vector<std::int64_t> ids_;
+  std::vector<std::uint32_t> slab_of_;
   std::vector<double> time_, bend_;
 };
 

@@ -24,6 +24,12 @@ import sys, copy, yaml
 base = yaml.safe_load(open(sys.argv[1]))
 base["checkpoint"] = {"every_steps": 50}
 base["stages"][0]["particles_every"] = 50
+# A rod probe on the DPD half: its particles' slabs are fixed at the start,
+# and a resumed run must take them from the checkpoint, not from where the
+# particles stand at step 200.
+base["stages"][0]["groups"].append(
+    {"name": "dpd_bar", "region": {"style": "block", "lo": [0, 0, 0], "hi": [56, 28.92, 28.92]}})
+base["stages"][0]["rods"] = [{"name": "bar", "group": "dpd_bar", "axis": "x"}]
 def write(name, cfg):
     cfg = copy.deepcopy(cfg)
     cfg["run"]["name"] = name
@@ -32,7 +38,7 @@ pull = copy.deepcopy(base)
 stage = pull["stages"][0]
 stage["name"] = "pull"
 stage["bodies"] = [stage["bodies"][0]]
-stage["groups"] = [g for g in stage["groups"] if g["name"] in ("dpd_plane", "mpm_plane")] + [
+stage["groups"] = [g for g in stage["groups"] if g["name"] in ("dpd_plane", "mpm_plane", "dpd_bar")] + [
     {"name": "left_grip", "region": {"style": "block", "lo": [-1, -1, -1], "hi": [8, 30, 30]}},
     {"name": "right_grip", "region": {"style": "block", "lo": [108, -1, -1], "hi": [117, 30, 30]}}]
 stage["motion"] = [

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "fcc_particles.hpp"
 #include "pbms/analysis/neck_width.hpp"
 #include "stage/neck_probe.hpp"
 
@@ -16,32 +17,11 @@ constexpr double kA = 7.23;  // lattice constant
 
 // fcc sites (lattice constant kA, origin 0) for which `inside` holds, in a
 // 40 a cube around the origin; groups: 1 for x < 0, 2 for x >= 0.
-struct Body {
-  std::vector<std::int64_t> id;
-  std::vector<coupling::Vec3> x, v;
-  std::vector<double> mass;
-  std::vector<std::uint32_t> groups;
-
+struct Body : test::FccParticles {
   template <class Inside>
-  explicit Body(Inside inside) {
-    const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
-    for (int i = -20; i < 20; ++i) {
-      for (int j = -20; j < 20; ++j) {
-        for (int k = -20; k < 20; ++k) {
-          for (const auto& b : basis) {
-            const coupling::Vec3 p{(i + b[0]) * kA, (j + b[1]) * kA, (k + b[2]) * kA};
-            if (!inside(p)) continue;
-            id.push_back(static_cast<std::int64_t>(id.size()));
-            x.push_back(p);
-            v.push_back({0, 0, 0});
-            mass.push_back(1.0);
-            groups.push_back(p[0] < 0.0 ? 1U : 2U);
-          }
-        }
-      }
-    }
-  }
-  [[nodiscard]] coupling::ParticleView view() const { return {x.size(), id, x, v, mass, groups}; }
+  explicit Body(Inside inside)
+      : FccParticles(kA, {{{-20, 19}, {-20, 19}, {-20, 19}}}, inside,
+                     [](const coupling::Vec3& p) { return p[0] < 0.0 ? 1U : 2U; }) {}
 };
 
 double distance(const coupling::Vec3& p, const coupling::Vec3& c) {
