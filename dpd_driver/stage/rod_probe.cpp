@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "pbms/analysis/rod_bend.hpp"
@@ -29,10 +30,31 @@ RodProbe::RodProbe(MPI_Comm comm, coupling::RodBend spec, std::uint32_t mask, do
   if (!std::isfinite(range[0])) throw StageFailure("rod '" + spec_.name + "': its group is empty");
   // Slabs of a along a <100> axis hold two whole planes each (planes a/2
   // apart): their bounds fall midway between planes, where thermal motion
-  // does not carry a particle across.
-  lo_ = range[0] - 0.25 * a_;
+  // does not carry a particle across. The planes are placed by all the
+  // rod's particles, not by its lowest one: a particle out of a rough end
+  // face (2.4 Å in the assemblies' rod) put the bounds 0.6 Å from a plane.
+  const double h = 0.5 * a_;
+  const double phase = plane_phase(now, h);
+  const double first = phase + h * std::floor((range[0] - phase) / h + 0.5);
+  lo_ = first - 0.5 * h;
   slabs_ = static_cast<std::size_t>(std::floor((-range[1] - lo_) / a_)) + 1;
   assign_slabs(now);
+}
+
+// Where the planes normal to the axis sit, modulo their spacing h: the
+// angle of the mean of exp(2 pi i z / h) over the rod's particles.
+double RodProbe::plane_phase(const coupling::ParticleView& now, double h) const {
+  const auto axis = static_cast<std::size_t>(spec_.axis);
+  const double k = 2.0 * std::numbers::pi / h;
+  double sum[2] = {0.0, 0.0};  // cos, sin
+  for (std::size_t i = 0; i < now.count; ++i) {
+    if ((now.groups[i] & mask_) == 0U) continue;
+    sum[0] += std::cos(k * now.x[i][axis]);
+    sum[1] += std::sin(k * now.x[i][axis]);
+  }
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, sum, 2, MPI_DOUBLE, MPI_SUM, comm_),
+             "MPI_Allreduce (rod planes)");
+  return std::atan2(sum[1], sum[0]) / k;
 }
 
 // Each rank keeps the whole rod's (id, slab) pairs: particles change rank

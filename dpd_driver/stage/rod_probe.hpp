@@ -36,6 +36,7 @@ class RodProbe {
   void load(const CheckpointArchive& a);
 
  private:
+  [[nodiscard]] double plane_phase(const coupling::ParticleView& now, double h) const;
   void assign_slabs(const coupling::ParticleView& now);
   [[nodiscard]] std::optional<std::size_t> slab_of(std::int64_t id) const;
 

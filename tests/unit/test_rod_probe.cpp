@@ -62,3 +62,23 @@ TEST(RodProbe, AnArcReadsItsSagitta) {
   }
   EXPECT_NEAR(bend_of(probe, rod), s, 0.02 * s);
 }
+
+// The slabs' bounds fall midway between planes wherever the rod's lowest
+// particle stands: one particle 2.4 Å out of the end face (on the axis, so
+// that it moves no centroid) and the others up to 0.8 Å off their planes
+// along the axis. Bounds set from the lowest particle fall 0.6 Å from a
+// plane and split it between two slabs, whose centroids then leave the
+// axis.
+TEST(RodProbe, AParticleOutOfTheEndFaceDoesNotSetTheSlabs) {
+  Rod rod;
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> along(-0.8, 0.8);
+  for (auto& p : rod.x) p[2] += along(gen);
+  rod.id.push_back(1);
+  rod.x.push_back({0.0, 0.0, -2.4});
+  rod.v.push_back({0, 0, 0});
+  rod.mass.push_back(1.0);
+  rod.groups.push_back(1U);
+  dpd::RodProbe probe(MPI_COMM_SELF, {"r", "rod", 2}, 1U, kA, rod.view());
+  EXPECT_NEAR(bend_of(probe, rod), 0.0, 1e-9);
+}
